@@ -1,0 +1,142 @@
+/* hamlie — exact algebra.
+ *
+ * An element is a rational function over Q in the context's variables:
+ *   base symbols  (phase variables, parameters, the step D), given at creation;
+ *   atoms         one per distinct transcendental or algebraic subterm
+ *                 (sin u, cos u, exp u, log u, sqrt u, atan u, pi, ...), made on
+ *                 demand, each with its derivative rule and its relations.
+ * Polynomials are FLINT fmpz_mpoly over one fixed mpoly context whose variables
+ * are the base symbols followed by room for max_atoms atoms.
+ *
+ * Canonical form (kept after every operation; hl_alg_is_canonical checks it):
+ *   a = num / den with num, den in Z[vars], gcd(num, den) = 1, the leading
+ *   coefficient of den positive (den = 1 for polynomials, num = 0 => den = 1);
+ *   num reduced by the atom relations (sin^2 = 1 - cos^2 style: degree <= 1 in
+ *   one atom of each sin/cos pair and in each square root);
+ *   den free of those quadratic atoms (rationalised).
+ * With a single family of atoms this form is unique, so zero is decided
+ * exactly.  Where several atoms might be related (exp and log, sin u and
+ * sin 2u, ...) hl_alg_is_zero also evaluates at random points in high
+ * precision with Arb; the context remembers that it did, and callers say so.
+ *
+ * Functions taking an hl_error may fail: HL_EDOM (division by zero, log 0,
+ * sqrt of a negative constant), HL_EINVAL (unknown symbol), HL_ELIMIT (more
+ * atoms than the context has room for).  Outputs may alias inputs.
+ */
+#ifndef HAMLIE_ALG_H
+#define HAMLIE_ALG_H
+
+#include <flint/fmpz_mpoly.h>
+#include <flint/fmpq.h>
+#include <arb.h>
+#include "hamlie/error.h"
+#include "hamlie/expr.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct hl_alg_ctx hl_alg_ctx;
+
+typedef struct hl_alg {
+    fmpz_mpoly_t num;
+    fmpz_mpoly_t den;
+} hl_alg;
+
+/* ---- context ---------------------------------------------------------- */
+
+/* nbase base symbols (copied), room for max_atoms atoms (0 = default 32). */
+hl_alg_ctx *hl_alg_ctx_new(int nbase, const char *const *names, int max_atoms);
+void hl_alg_ctx_free(hl_alg_ctx *ctx); /* NULL is a no-op */
+
+int hl_alg_ctx_nbase(const hl_alg_ctx *ctx);
+const char *hl_alg_ctx_name(const hl_alg_ctx *ctx, int i);
+int hl_alg_ctx_index(const hl_alg_ctx *ctx, const char *name); /* -1 if none */
+int hl_alg_ctx_natoms(const hl_alg_ctx *ctx);
+
+/* The FLINT context, for code that works on num and den directly. */
+const fmpz_mpoly_ctx_struct *hl_alg_ctx_mpoly(const hl_alg_ctx *ctx);
+
+/* Was a numeric (Arb) test used to decide a zero since the last reset? */
+int hl_alg_ctx_numeric_used(const hl_alg_ctx *ctx);
+void hl_alg_ctx_reset_numeric_used(hl_alg_ctx *ctx);
+
+/* ---- elements --------------------------------------------------------- */
+
+void hl_alg_init(hl_alg *a, const hl_alg_ctx *ctx); /* a = 0 */
+void hl_alg_clear(hl_alg *a, const hl_alg_ctx *ctx);
+void hl_alg_set(hl_alg *r, const hl_alg *a, const hl_alg_ctx *ctx);
+void hl_alg_swap(hl_alg *a, hl_alg *b, const hl_alg_ctx *ctx);
+void hl_alg_zero(hl_alg *r, const hl_alg_ctx *ctx);
+void hl_alg_one(hl_alg *r, const hl_alg_ctx *ctx);
+void hl_alg_set_si(hl_alg *r, long c, const hl_alg_ctx *ctx);
+void hl_alg_set_fmpq(hl_alg *r, const fmpq_t c, const hl_alg_ctx *ctx);
+void hl_alg_gen(hl_alg *r, int i, const hl_alg_ctx *ctx); /* base symbol i */
+
+/* Arrays of elements. */
+hl_alg *hl_alg_vec_new(int n, const hl_alg_ctx *ctx);
+void hl_alg_vec_free(hl_alg *v, int n, const hl_alg_ctx *ctx); /* NULL is a no-op */
+
+/* ---- arithmetic ------------------------------------------------------- */
+
+void hl_alg_add(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx);
+void hl_alg_sub(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx);
+void hl_alg_neg(hl_alg *r, const hl_alg *a, hl_alg_ctx *ctx);
+void hl_alg_mul(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx);
+void hl_alg_scalar_mul_fmpq(hl_alg *r, const hl_alg *a, const fmpq_t c, hl_alg_ctx *ctx);
+int hl_alg_div(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx, hl_error *err);
+int hl_alg_pow_si(hl_alg *r, const hl_alg *a, long e, hl_alg_ctx *ctx, hl_error *err);
+
+/* ---- conversion ------------------------------------------------------- */
+
+/* Read an expression.  Every symbol must be a base symbol (else HL_EINVAL
+ * naming it); functions become atoms; a^(p/q) with a rational exponent uses
+ * powers and roots; a^b with b not constant is exp(b*log(a)). */
+int hl_alg_from_expr(hl_alg *r, const hl_expr *e, hl_alg_ctx *ctx, hl_error *err);
+
+/* Write as an expression the way a person would: terms collected, the
+ * denominator factored, sqrt(u)/u^2 shown as u^(-3/2), atoms as functions. */
+const hl_expr *hl_alg_to_expr(const hl_alg *a, const hl_alg_ctx *ctx, hl_pool *pool);
+
+/* ---- calculus and structure ------------------------------------------- */
+
+/* Partial derivative with respect to base symbol var (chain rule through atoms). */
+int hl_alg_diff(hl_alg *r, const hl_alg *a, int var, hl_alg_ctx *ctx, hl_error *err);
+
+/* Simultaneous substitution of base symbols vars[i] by vals[i]; atoms whose
+ * arguments change become (possibly new) atoms. */
+int hl_alg_subst(hl_alg *r, const hl_alg *a, int n, const int *vars, const hl_alg *vals,
+                 hl_alg_ctx *ctx, hl_error *err);
+
+/* Zero test: exact where the canonical form decides, else numeric (see top). */
+int hl_alg_is_zero(const hl_alg *a, hl_alg_ctx *ctx);
+int hl_alg_equal(const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx);
+
+/* Is a a rational constant?  If so and c != NULL, set c. */
+int hl_alg_is_fmpq(const hl_alg *a, fmpq_t c, const hl_alg_ctx *ctx);
+
+/* Does a depend on base symbol var (directly or through an atom)? */
+int hl_alg_depends_on(const hl_alg *a, int var, const hl_alg_ctx *ctx);
+
+/* Coefficient of var^k when a is a polynomial in base symbol var (its
+ * denominator and atoms free of var); HL_EINVAL otherwise. */
+int hl_alg_coeff(hl_alg *r, const hl_alg *a, int var, long k, hl_alg_ctx *ctx,
+                 hl_error *err);
+long hl_alg_degree(const hl_alg *a, int var, const hl_alg_ctx *ctx); /* -1 for 0 */
+
+/* Number of terms of num plus den: the size of an element. */
+long hl_alg_length(const hl_alg *a, const hl_alg_ctx *ctx);
+
+/* Evaluate with Arb at a point: vals[i] is the value of base symbol i.
+ * HL_EDOM if a denominator or a function's domain is hit (ball contains 0). */
+int hl_alg_eval_arb(arb_t r, const hl_alg *a, arb_srcptr vals, slong prec,
+                    hl_alg_ctx *ctx, hl_error *err);
+
+/* Checker for tests: are all the canonical-form invariants above true? */
+int hl_alg_is_canonical(const hl_alg *a, const hl_alg_ctx *ctx);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

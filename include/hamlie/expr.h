@@ -1,0 +1,157 @@
+/* hamlie — the expression language.
+ *
+ * An expression is an immutable node in a hash-consed DAG owned by a pool:
+ * two structurally equal expressions made in the same pool are the same
+ * pointer, so `a == b` is structural equality.  Nodes live until the pool is
+ * freed; nothing else frees them.
+ *
+ * The DAG is faithful to the syntax (a - b is HL_SUB, not a + (-1)*b): the
+ * exact algebra layer (alg.h) does simplification.  The parser folds only
+ * what makes a literal a literal: "-3" and "2/3" and "0.25" are numbers, so
+ * parse(print(e)) == e for every e the parser returns.
+ *
+ * Grammar (precedence from loose to tight; see src/expr/prec.h):
+ *   list    := [eqn {';' eqn}] [';']
+ *   eqn     := expr ['=' expr]
+ *   expr    := expr ('+'|'-') expr          left associative
+ *            | expr ('*'|'/') expr          left associative
+ *            | ('-'|'+') expr               unary, looser than ^: -x^2 = -(x^2)
+ *            | expr ('^'|'**') expr         right associative: a^b^c = a^(b^c)
+ *            | number | symbol | 'pi' | func '(' expr ')' | '(' expr ')'
+ *   number  := digits ['.' digits] [('e'|'E') ['+'|'-'] digits]   exact rational
+ *   symbol  := letter {letter | digit | '_'}
+ *   func    := sin cos tan exp log sqrt atan asin acos sinh cosh tanh
+ */
+#ifndef HAMLIE_EXPR_H
+#define HAMLIE_EXPR_H
+
+#include <flint/fmpq.h>
+#include "hamlie/error.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum hl_expr_kind {
+    HL_NUM, /* exact rational constant: num */
+    HL_SYM, /* named symbol: name */
+    HL_PI,  /* the constant pi */
+    HL_NEG, /* -a */
+    HL_ADD, /* a + b */
+    HL_SUB, /* a - b */
+    HL_MUL, /* a * b */
+    HL_DIV, /* a / b */
+    HL_POW, /* a ^ b */
+    HL_FUN  /* fun(a) */
+} hl_expr_kind;
+
+typedef enum hl_fun {
+    HL_SIN, HL_COS, HL_TAN, HL_EXP, HL_LOG, HL_SQRT,
+    HL_ATAN, HL_ASIN, HL_ACOS, HL_SINH, HL_COSH, HL_TANH,
+    HL_FUN_COUNT
+} hl_fun;
+
+typedef struct hl_expr hl_expr;
+struct hl_expr {
+    hl_expr_kind kind;
+    hl_fun fun;           /* HL_FUN only */
+    unsigned id;          /* creation order in the pool: a stable total order */
+    unsigned long hash;   /* structural hash */
+    fmpq_t num;           /* HL_NUM only (canonical: reduced, positive denominator) */
+    const char *name;     /* HL_SYM only; interned in the pool */
+    const hl_expr *a, *b; /* operands: NEG and FUN use a; binary kinds use a, b */
+};
+
+typedef struct hl_pool hl_pool;
+
+hl_pool *hl_pool_new(void);
+void hl_pool_free(hl_pool *pool); /* NULL is a no-op */
+
+/* Constructors.  Never NULL (an allocation failure aborts with a message:
+ * memory is the one resource the library does not budget for the caller). */
+const hl_expr *hl_num_si(hl_pool *pool, long n);
+const hl_expr *hl_num_frac(hl_pool *pool, long p, unsigned long q); /* q > 0 */
+const hl_expr *hl_num_fmpq(hl_pool *pool, const fmpq_t x);
+const hl_expr *hl_sym(hl_pool *pool, const char *name);
+const hl_expr *hl_pi(hl_pool *pool);
+const hl_expr *hl_neg(hl_pool *pool, const hl_expr *a);
+const hl_expr *hl_add(hl_pool *pool, const hl_expr *a, const hl_expr *b);
+const hl_expr *hl_sub(hl_pool *pool, const hl_expr *a, const hl_expr *b);
+const hl_expr *hl_mul(hl_pool *pool, const hl_expr *a, const hl_expr *b);
+const hl_expr *hl_div(hl_pool *pool, const hl_expr *a, const hl_expr *b);
+const hl_expr *hl_pow(hl_pool *pool, const hl_expr *a, const hl_expr *b);
+const hl_expr *hl_call(hl_pool *pool, hl_fun f, const hl_expr *a);
+
+/* Name of a function as written ("sin"), and lookup by name (-1 if none). */
+const char *hl_fun_name(hl_fun f);
+int hl_fun_lookup(const char *name, int len);
+
+/* ---- parsing ---------------------------------------------------------- */
+
+/* Parse one expression.  On error returns HL_EPARSE (or HL_EDOM for a
+ * division by zero between literals, HL_ELIMIT for nesting deeper than
+ * HL_PARSE_MAX_DEPTH) with err->pos at the offending character and err->src
+ * set to src; the message says what was expected. */
+#define HL_PARSE_MAX_DEPTH 200
+int hl_parse(const hl_expr **out, hl_pool *pool, const char *src, hl_error *err);
+
+/* One item of a ';'-separated list: "lhs = rhs", or a bare expression
+ * (then rhs is NULL).  pos is the byte offset where the item starts. */
+typedef struct hl_eqn {
+    const hl_expr *lhs, *rhs;
+    int pos;
+} hl_eqn;
+
+/* Parse a list of at most max items into out[0..*n-1]. */
+int hl_parse_list(hl_eqn *out, int max, int *n, hl_pool *pool, const char *src,
+                  hl_error *err);
+
+/* Byte offset of the first token in src that is the symbol `name`, or -1.
+ * Lets later layers point at a symbol they reject ("unknown symbol 'z'"). */
+int hl_symbol_pos(const char *src, const char *name);
+
+/* ---- printing --------------------------------------------------------- */
+
+typedef enum hl_style {
+    HL_STYLE_TEXT,  /* hamlie's own syntax; parses back to the same DAG */
+    HL_STYLE_LATEX, /* for a paper: \frac, \sin, p_{x}, \omega */
+    HL_STYLE_SYMPY, /* sympy.sympify parses it: **, pi, the user's names */
+    HL_STYLE_C      /* a C expression over doubles: pow(), sin(), M_PI */
+} hl_style;
+
+/* Print an expression; the string is malloc'd and owned by the caller. */
+char *hl_expr_print(const hl_expr *e, hl_style style);
+
+/* A symbol name in LaTeX: "omega" -> "\omega", "q1" -> "q_{1}",
+ * "p_2" -> "p_{2}", "px" -> "p_{x}".  malloc'd. */
+char *hl_symbol_latex(const char *name);
+
+/* ---- structure -------------------------------------------------------- */
+
+/* Distinct symbol names in order of first appearance (left to right).
+ * Writes at most max names (borrowed from the pool) and returns how many
+ * distinct symbols there are in all. */
+int hl_expr_symbols(const hl_expr *e, const char **names, int max);
+
+/* Does e mention the symbol? */
+int hl_expr_has_symbol(const hl_expr *e, const char *name);
+
+/* Replace each symbol names[i] by vals[i] (simultaneously). */
+const hl_expr *hl_expr_subst(hl_pool *pool, const hl_expr *e, int n,
+                             const char *const *names, const hl_expr *const *vals);
+
+/* Derivative with respect to a symbol, lightly simplified (0 and 1 folded,
+ * rational constants combined) so that tapes built from it stay small. */
+const hl_expr *hl_expr_diff(hl_pool *pool, const hl_expr *e, const char *var);
+
+/* Evaluate in double with the given symbol values.  Errors (HL_EINVAL) on a
+ * symbol without a value; the result may be inf or nan, which the caller
+ * checks.  A reference evaluator for tests: tape.h is the fast path. */
+int hl_expr_eval_d(double *out, const hl_expr *e, int n, const char *const *names,
+                   const double *vals, hl_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Install the Debian packages hamlie needs to build, test, plot and benchmark.
+# Safe to run again; needs root (or sudo) on Debian 12 or later.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libflint-dev libflint-arb-dev libgmp-dev libmpfr-dev   # exact and high-precision arithmetic
+  libplplot-dev plplot-driver-cairo                     # figures (PNG, SVG, PDF)
+  python3 python3-sympy                                 # the peer in bench/ (not needed to build)
+  libgsl-dev                                            # the peer integrator in bench/
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; fi
+echo "installing: ${missing[*]}" >&2
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}" >&2
