@@ -35,16 +35,29 @@ hl_status hl_error_set(hl_error *err, hl_status status, const char *src, int pos
 
 void hl_error_prefix(hl_error *err, const char *fmt, ...)
 {
-    char prefix[HL_ERROR_MSG_MAX], old[HL_ERROR_MSG_MAX];
+    char msg[HL_ERROR_MSG_MAX];
     va_list ap;
 
     if (err == NULL)
         return;
     va_start(ap, fmt);
-    vsnprintf(prefix, sizeof prefix, fmt, ap);
+    int n = vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    memcpy(old, err->msg, sizeof old);
-    snprintf(err->msg, sizeof err->msg, "%s: %s", prefix, old);
+    /* append ": <old message>", cut to fit like every message */
+    size_t used = n < 0 ? 0 : ((size_t)n < sizeof msg ? (size_t)n : sizeof msg - 1);
+    size_t room = sizeof msg - 1 - used;
+    size_t old = strlen(err->msg);
+    if (room >= 2) {
+        memcpy(msg + used, ": ", 2);
+        used += 2;
+        room -= 2;
+        if (old > room)
+            old = room;
+        memcpy(msg + used, err->msg, old);
+        used += old;
+    }
+    msg[used] = '\0';
+    memcpy(err->msg, msg, used + 1);
 }
 
 const char *hl_status_string(hl_status status)

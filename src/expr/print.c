@@ -1,0 +1,468 @@
+/* Printers: hamlie text, LaTeX, sympy, C.
+ *
+ * Text, sympy and C share the priority table of prec.h: an operand is put in
+ * parentheses exactly when the parser's rule would regroup it, plus two
+ * conventions for readability that cost no parse depth (see parse.c): a right
+ * operand that starts with '-' is parenthesised ("x^(-2)", "a*(-b)"), and in
+ * text a double negation is written "--x".  Text also avoids the two literal
+ * foldings of the parser: NEG(3) prints "-(3)", 2 DIV 3 prints "2/(3)".
+ *
+ * Text round trip: parse(print(e)) == e for every DAG whose symbols are
+ * identifiers (letter {letter|digit|_}) other than "pi" and the function
+ * names, and whose printed form nests at most HL_PARSE_MAX_DEPTH levels
+ * (always true of what the parser returns).  A symbol named "pi" or "sin",
+ * or one that is not an identifier, cannot be written in the language. */
+#include <string.h>
+
+#include "base/buf.h"
+#include "expr/prec.h"
+
+/* ---- numbers --------------------------------------------------------------- */
+
+static int num_is_int(const hl_expr *e) { return fmpz_is_one(fmpq_denref(e->num)); }
+static int num_sgn(const hl_expr *e) { return fmpz_sgn(fmpq_numref(e->num)); }
+
+static void put_fmpz(hl_buf *b, const fmpz_t x)
+{
+    char *s = fmpz_get_str(NULL, 10, x);
+    hl_buf_puts(b, s);
+    flint_free(s);
+}
+
+/* ---- text, sympy, C: priorities of printed forms ---------------------------- */
+
+/* Priority a printed e shows to an operator on its right. */
+static int right_prio(hl_style st, const hl_expr *e)
+{
+    switch (e->kind) {
+    case HL_NUM:
+        if (!num_is_int(e))
+            return st == HL_STYLE_C ? HL_PREC_ATOM : hl_prec_table[HL_DIV].right;
+        return num_sgn(e) < 0 ? HL_PREC_UNARY : HL_PREC_ATOM;
+    case HL_NEG:
+        return HL_PREC_UNARY;
+    case HL_ADD: case HL_SUB: case HL_MUL: case HL_DIV: case HL_POW:
+        if (st == HL_STYLE_C && e->kind == HL_POW)
+            return HL_PREC_ATOM; /* pow(a, b) */
+        return hl_prec_table[e->kind].right;
+    default:
+        return HL_PREC_ATOM;
+    }
+}
+
+/* Priority a printed e shows to an operator on its left. */
+static int left_prio(hl_style st, const hl_expr *e)
+{
+    switch (e->kind) {
+    case HL_NUM:
+        if (!num_is_int(e))
+            return st == HL_STYLE_C ? HL_PREC_ATOM : hl_prec_table[HL_DIV].left;
+        return HL_PREC_ATOM;
+    case HL_NEG:
+        return HL_PREC_UNARY;
+    case HL_ADD: case HL_SUB: case HL_MUL: case HL_DIV: case HL_POW:
+        if (st == HL_STYLE_C && e->kind == HL_POW)
+            return HL_PREC_ATOM;
+        return hl_prec_table[e->kind].left;
+    default:
+        return HL_PREC_ATOM;
+    }
+}
+
+static int paren_left(hl_style st, hl_expr_kind op, const hl_expr *a)
+{
+    return right_prio(st, a) < hl_prec_table[op].left;
+}
+
+static int starts_minus(hl_style st, const hl_expr *e)
+{
+    for (;;) {
+        switch (e->kind) {
+        case HL_NUM:
+            return num_sgn(e) < 0 && !(st == HL_STYLE_C && !num_is_int(e));
+        case HL_NEG:
+            return 1;
+        case HL_ADD: case HL_SUB: case HL_MUL: case HL_DIV: case HL_POW:
+            if ((st == HL_STYLE_C && e->kind == HL_POW) || paren_left(st, e->kind, e->a))
+                return 0;
+            e = e->a;
+            break;
+        default:
+            return 0;
+        }
+    }
+}
+
+static int paren_right(hl_style st, hl_expr_kind op, const hl_expr *a, const hl_expr *b)
+{
+    if (left_prio(st, b) <= hl_prec_table[op].right || starts_minus(st, b))
+        return 1;
+    /* text: "2/3" would be read as the number 2/3 */
+    return st == HL_STYLE_TEXT && op == HL_DIV && a->kind == HL_NUM && b->kind == HL_NUM;
+}
+
+static int paren_neg(hl_style st, const hl_expr *a)
+{
+    if (a->kind == HL_NEG)
+        return st != HL_STYLE_TEXT; /* C would read "--" as a decrement */
+    if (left_prio(st, a) <= HL_PREC_UNARY)
+        return 1;
+    if (starts_minus(st, a))
+        return st != HL_STYLE_TEXT; /* C would read "--" as a decrement */
+    /* text: "-3" would be read as the number -3 */
+    return st == HL_STYLE_TEXT && a->kind == HL_NUM;
+}
+
+/* Names sympify would not read as a plain symbol: Python keywords and
+ * sympy's own names a physicist may well use.  Printed as Symbol('E'). */
+static const char *const sympy_reserved[] = {
+    "E", "I", "N", "O", "Q", "S", "oo", "nan", "zoo", "pi", "beta", "gamma", "zeta",
+    "lambda", "Li", "li", "re", "im", "ln", "arg", "sign", "Abs", "Max", "Min", "Eq",
+    "Ne", "Lt", "Gt", "Le", "Ge", "And", "Or", "Not", "Xor", "true", "false", "ff",
+    "rf", "erf", "erfc", "Ei", "Si", "Ci", "Chi", "Shi", "sec", "csc", "cot", "acot",
+    "asec", "acsc", "asinh", "acosh", "atanh", "acoth", "coth", "sech", "csch",
+    "atan2", "sinc", "floor", "ceiling", "frac", "gcd", "lcm", "prime", "Mod", "mod",
+    "Sum", "Product", "Integral", "Derivative", "Function", "Symbol", "Lambda",
+    "Matrix", "diff", "integrate", "limit", "series", "solve", "expand", "factor",
+    "simplify", "var", "symbols", "test", "det", "trace", "eye", "ones", "zeros",
+    "Poly", "poly", "field", "ring", "Id", "Add", "Mul", "Pow", "Float", "Rational",
+    "Integer", "Number", "Interval", "Union", "Range", "Tuple", "Dict", "Order",
+    "euler", "catalan", "bernoulli", "fibonacci", "lucas", "harmonic", "bell",
+    "digamma", "polygamma", "loggamma", "uppergamma", "lowergamma", "hyper",
+    "besselj", "bessely", "besseli", "besselk", "jn", "yn", "hermite", "legendre",
+    "laguerre", "chebyshevt", "chebyshevu", "root", "cbrt", "exp_polar", "Heaviside",
+    "DiracDelta", "KroneckerDelta", "LeviCivita", "Point", "Line", "Circle", "Plane",
+    "Ray", "Segment", "Triangle", "Polygon", "Curve", "Set", "FiniteSet", "EmptySet",
+    "Piecewise", "rad", "deg", "cos", "sin", "tan", "exp", "log", "sqrt", "atan",
+    "asin", "acos", "sinh", "cosh", "tanh", "and", "as", "assert", "async", "await",
+    "break", "class", "continue", "def", "del", "elif", "else", "except", "finally",
+    "for", "from", "global", "if", "import", "in", "is", "nonlocal", "not", "or",
+    "pass", "raise", "return", "try", "while", "with", "yield", "None", "True",
+    "False", "content", "degree", "div", "rem", "quo", "roots", "cancel", "apart",
+    "together", "residue", "lambdify", "sympify", "srepr", "latex", "plot", "ask",
+    "cse", "Dummy", "Wild", "evaluate", "real_root", "conjugate", "transpose",
+    "adjoint", "totient", "divisors", "refine", "nsimplify", "numer", "denom",
+    "EX", "QQ", "ZZ", "RR", "CC", "GF", "FF", "QQ_I", "ZZ_I", "Ynm", "Znm", "Eijk",
+};
+
+static int sympy_is_reserved(const char *name)
+{
+    for (size_t i = 0; i < sizeof sympy_reserved / sizeof *sympy_reserved; i++)
+        if (strcmp(name, sympy_reserved[i]) == 0)
+            return 1;
+    return 0;
+}
+
+/* ---- text, sympy, C: printing --------------------------------------------- */
+
+static void put_number(hl_buf *b, hl_style st, const hl_expr *e)
+{
+    if (st != HL_STYLE_C) {
+        put_fmpz(b, fmpq_numref(e->num));
+        if (!num_is_int(e)) {
+            hl_buf_putc(b, '/');
+            put_fmpz(b, fmpq_denref(e->num));
+        }
+        return;
+    }
+    /* C: doubles, and a fraction as one parenthesised quotient */
+    if (!num_is_int(e))
+        hl_buf_putc(b, '(');
+    put_fmpz(b, fmpq_numref(e->num));
+    hl_buf_puts(b, ".0");
+    if (!num_is_int(e)) {
+        hl_buf_putc(b, '/');
+        put_fmpz(b, fmpq_denref(e->num));
+        hl_buf_puts(b, ".0)");
+    }
+}
+
+static void print_plain(hl_buf *b, hl_style st, const hl_expr *e);
+
+static void print_group(hl_buf *b, hl_style st, const hl_expr *e, int paren)
+{
+    if (paren)
+        hl_buf_putc(b, '(');
+    print_plain(b, st, e);
+    if (paren)
+        hl_buf_putc(b, ')');
+}
+
+static const char *op_text(hl_style st, hl_expr_kind k)
+{
+    switch (k) {
+    case HL_ADD: return " + ";
+    case HL_SUB: return " - ";
+    case HL_MUL: return "*";
+    case HL_DIV: return "/";
+    default: return st == HL_STYLE_SYMPY ? "**" : "^";
+    }
+}
+
+static void print_plain(hl_buf *b, hl_style st, const hl_expr *e)
+{
+    switch (e->kind) {
+    case HL_NUM:
+        put_number(b, st, e);
+        break;
+    case HL_SYM:
+        if (st == HL_STYLE_SYMPY && sympy_is_reserved(e->name))
+            hl_buf_printf(b, "Symbol('%s')", e->name);
+        else
+            hl_buf_puts(b, e->name);
+        break;
+    case HL_PI:
+        hl_buf_puts(b, st == HL_STYLE_C ? "M_PI" : "pi");
+        break;
+    case HL_NEG:
+        hl_buf_putc(b, '-');
+        print_group(b, st, e->a, paren_neg(st, e->a));
+        break;
+    case HL_FUN: /* C prints a fraction in parentheses already */
+        hl_buf_puts(b, hl_fun_name(e->fun));
+        print_group(b, st, e->a,
+                    !(st == HL_STYLE_C && e->a->kind == HL_NUM && !num_is_int(e->a)));
+        break;
+    default:
+        if (st == HL_STYLE_C && e->kind == HL_POW) {
+            hl_buf_puts(b, "pow(");
+            print_plain(b, st, e->a);
+            hl_buf_puts(b, ", ");
+            print_plain(b, st, e->b);
+            hl_buf_putc(b, ')');
+            break;
+        }
+        print_group(b, st, e->a, paren_left(st, e->kind, e->a));
+        hl_buf_puts(b, op_text(st, e->kind));
+        print_group(b, st, e->b, paren_right(st, e->kind, e->a, e->b));
+    }
+}
+
+/* ---- LaTeX ------------------------------------------------------------------ */
+
+static const char *const greek[] = {
+    "alpha", "beta", "gamma", "delta", "epsilon", "varepsilon", "zeta", "eta", "theta",
+    "vartheta", "iota", "kappa", "lambda", "mu", "nu", "xi", "pi", "varpi", "rho",
+    "varrho", "sigma", "varsigma", "tau", "upsilon", "phi", "varphi", "chi", "psi",
+    "omega", "Gamma", "Delta", "Theta", "Lambda", "Xi", "Pi", "Sigma", "Upsilon",
+    "Phi", "Psi", "Omega",
+};
+
+static int is_greek(const char *s, size_t n)
+{
+    for (size_t i = 0; i < sizeof greek / sizeof *greek; i++)
+        if (strlen(greek[i]) == n && memcmp(greek[i], s, n) == 0)
+            return 1;
+    return 0;
+}
+
+static int all_digits(const char *s, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (s[i] < '0' || s[i] > '9')
+            return 0;
+    return n > 0;
+}
+
+/* A name without '_': greek, letter, letter+digits, letter+letter, letter+greek. */
+static void latex_name(hl_buf *b, const char *s, size_t n)
+{
+    size_t k = n;
+    while (k > 0 && s[k - 1] >= '0' && s[k - 1] <= '9')
+        k--;
+    if (k > 0 && k < n) { /* q1, omega0, mass2 */
+        latex_name(b, s, k);
+        hl_buf_puts(b, "_{");
+        hl_buf_putn(b, s + k, n - k);
+        hl_buf_putc(b, '}');
+    } else if (n == 1 || all_digits(s, n)) {
+        hl_buf_putn(b, s, n);
+    } else if (is_greek(s, n)) {
+        hl_buf_putc(b, '\\');
+        hl_buf_putn(b, s, n);
+    } else if (n == 2 || is_greek(s + 1, n - 1)) { /* px, ptheta */
+        hl_buf_putc(b, s[0]);
+        hl_buf_puts(b, "_{");
+        latex_name(b, s + 1, n - 1);
+        hl_buf_putc(b, '}');
+    } else {
+        hl_buf_puts(b, "\\mathrm{");
+        hl_buf_putn(b, s, n);
+        hl_buf_putc(b, '}');
+    }
+}
+
+static void latex_symbol(hl_buf *b, const char *name)
+{
+    const char *u = strchr(name, '_');
+    if (u == NULL || u == name || u[1] == '\0') {
+        if (u != NULL) { /* a leading or trailing '_' has no subscript reading */
+            hl_buf_puts(b, "\\mathrm{");
+            for (const char *c = name; *c; c++)
+                hl_buf_puts(b, *c == '_' ? "\\_" : (char[2]){*c, 0});
+            hl_buf_putc(b, '}');
+            return;
+        }
+        latex_name(b, name, strlen(name));
+        return;
+    }
+    latex_name(b, name, (size_t)(u - name));
+    hl_buf_puts(b, "_{");
+    latex_symbol(b, u + 1);
+    hl_buf_putc(b, '}');
+}
+
+char *hl_symbol_latex(const char *name)
+{
+    hl_buf b;
+    hl_buf_init(&b);
+    latex_symbol(&b, name);
+    return hl_buf_take(&b);
+}
+
+static const char *const latex_fun[HL_FUN_COUNT] = {
+    [HL_SIN] = "\\sin", [HL_COS] = "\\cos", [HL_TAN] = "\\tan", [HL_EXP] = "\\exp",
+    [HL_LOG] = "\\log", [HL_SQRT] = "\\sqrt", [HL_ATAN] = "\\arctan",
+    [HL_ASIN] = "\\arcsin", [HL_ACOS] = "\\arccos", [HL_SINH] = "\\sinh",
+    [HL_COSH] = "\\cosh", [HL_TANH] = "\\tanh",
+};
+
+static void latex(hl_buf *b, const hl_expr *e);
+
+static int latex_atom(const hl_expr *e) /* needs no parentheses under ^ */
+{
+    return e->kind == HL_SYM || e->kind == HL_PI ||
+           (e->kind == HL_NUM && num_is_int(e) && num_sgn(e) >= 0);
+}
+
+static int latex_sum(const hl_expr *e) { return e->kind == HL_ADD || e->kind == HL_SUB; }
+
+static int latex_minus(const hl_expr *e) /* printed form starts with '-' */
+{
+    while (e->kind == HL_ADD || e->kind == HL_SUB || e->kind == HL_MUL)
+        e = e->a;
+    return e->kind == HL_NEG || (e->kind == HL_NUM && num_sgn(e) < 0);
+}
+
+static void latex_group(hl_buf *b, const hl_expr *e, int paren)
+{
+    if (paren)
+        hl_buf_puts(b, "\\left(");
+    latex(b, e);
+    if (paren)
+        hl_buf_puts(b, "\\right)");
+}
+
+/* sin, cos, tan and the hyperbolic ones take sin^{2} x */
+static int latex_power_fun(hl_fun f)
+{
+    return f == HL_SIN || f == HL_COS || f == HL_TAN || f == HL_SINH || f == HL_COSH ||
+           f == HL_TANH;
+}
+
+static void latex_call(hl_buf *b, hl_fun f, const hl_expr *arg, const hl_expr *power)
+{
+    hl_buf_puts(b, latex_fun[f]);
+    if (f == HL_SQRT) {
+        hl_buf_putc(b, '{');
+        latex(b, arg);
+        hl_buf_putc(b, '}');
+        return;
+    }
+    if (power != NULL) {
+        hl_buf_puts(b, "^{");
+        latex(b, power);
+        hl_buf_putc(b, '}');
+    }
+    if (latex_atom(arg)) {
+        hl_buf_putc(b, ' ');
+        latex(b, arg);
+    } else {
+        latex_group(b, arg, 1);
+    }
+}
+
+static void latex(hl_buf *b, const hl_expr *e)
+{
+    hl_buf f;
+    switch (e->kind) {
+    case HL_NUM:
+        if (num_is_int(e)) {
+            put_fmpz(b, fmpq_numref(e->num));
+            break;
+        }
+        if (num_sgn(e) < 0)
+            hl_buf_putc(b, '-');
+        hl_buf_puts(b, "\\frac{");
+        fmpz_t t;
+        fmpz_init(t);
+        fmpz_abs(t, fmpq_numref(e->num));
+        put_fmpz(b, t);
+        fmpz_clear(t);
+        hl_buf_puts(b, "}{");
+        put_fmpz(b, fmpq_denref(e->num));
+        hl_buf_putc(b, '}');
+        break;
+    case HL_SYM:
+        latex_symbol(b, e->name);
+        break;
+    case HL_PI:
+        hl_buf_puts(b, "\\pi");
+        break;
+    case HL_NEG:
+        hl_buf_putc(b, '-');
+        latex_group(b, e->a, latex_sum(e->a) || latex_minus(e->a));
+        break;
+    case HL_FUN:
+        latex_call(b, e->fun, e->a, NULL);
+        break;
+    case HL_ADD:
+    case HL_SUB:
+        latex(b, e->a);
+        hl_buf_puts(b, e->kind == HL_ADD ? " + " : " - ");
+        latex_group(b, e->b, latex_minus(e->b) || (e->kind == HL_SUB && latex_sum(e->b)));
+        break;
+    case HL_MUL:
+        latex_group(b, e->a, latex_sum(e->a));
+        /* print the right factor apart to see how it starts */
+        hl_buf_init(&f);
+        latex_group(&f, e->b, latex_sum(e->b) || latex_minus(e->b));
+        /* a number after a factor needs a dot: 2\cdot 3, 2\cdot\frac{1}{2} */
+        hl_buf_puts(b, e->b->kind == HL_NUM || (f.s[0] >= '0' && f.s[0] <= '9') ? " \\cdot "
+                                                                                : "\\,");
+        hl_buf_puts(b, f.s);
+        hl_buf_clear(&f);
+        break;
+    case HL_DIV:
+        hl_buf_puts(b, "\\frac{");
+        latex(b, e->a);
+        hl_buf_puts(b, "}{");
+        latex(b, e->b);
+        hl_buf_putc(b, '}');
+        break;
+    case HL_POW:
+        if (e->a->kind == HL_FUN && latex_power_fun(e->a->fun) && e->b->kind == HL_NUM &&
+            num_is_int(e->b) && num_sgn(e->b) > 0) {
+            latex_call(b, e->a->fun, e->a->a, e->b); /* \sin^{2} q */
+            break;
+        }
+        latex_group(b, e->a, !latex_atom(e->a));
+        hl_buf_puts(b, "^{");
+        latex(b, e->b);
+        hl_buf_putc(b, '}');
+        break;
+    }
+}
+
+/* ---- entry ------------------------------------------------------------------ */
+
+char *hl_expr_print(const hl_expr *e, hl_style style)
+{
+    hl_buf b;
+    hl_buf_init(&b);
+    if (style == HL_STYLE_LATEX)
+        latex(&b, e);
+    else
+        print_plain(&b, style, e);
+    return hl_buf_take(&b);
+}
