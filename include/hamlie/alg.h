@@ -135,6 +135,23 @@ int hl_alg_eval_arb(arb_t r, const hl_alg *a, arb_srcptr vals, slong prec,
 /* Checker for tests: are all the canonical-form invariants above true? */
 int hl_alg_is_canonical(const hl_alg *a, const hl_alg_ctx *ctx);
 
+/* ---- functions (added by the alg layer) --------------------------------- */
+
+/* r = f(a) for an expression-language function (sin, sqrt, tanh, ...):
+ * tan = sin/cos, sinh/cosh/tanh through exp; exact values where they are
+ * known (sin 0, sqrt(9/4), cos(pi/3), log 1); HL_EDOM outside the domain. */
+int hl_alg_apply(hl_alg *r, hl_fun f, const hl_alg *a, hl_alg_ctx *ctx, hl_error *err);
+
+/* r = pi. */
+int hl_alg_pi(hl_alg *r, hl_alg_ctx *ctx, hl_error *err);
+
+/* r = a^e for a rational e: powers, square roots, q-th roots. */
+int hl_alg_pow_fmpq(hl_alg *r, const hl_alg *a, const fmpq_t e, hl_alg_ctx *ctx,
+                    hl_error *err);
+
+/* r = a^b: pow_fmpq when b is a rational constant, else exp(b*log(a)). */
+int hl_alg_pow(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx, hl_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,0 +1,191 @@
+/* Simultaneous substitution of base symbols.  Every variable gets an image:
+ * a base symbol its value (or itself), an atom the same function of its
+ * substituted argument (re-made, so it may become a new atom or a known
+ * value).  Then num and den are composed with the images: with unit
+ * denominators by FLINT's composition, else term by term over the common
+ * denominator prod d_i^(deg_i). */
+#include <stdlib.h>
+
+#include "alg/alg_internal.h"
+#include "base/buf.h"
+
+static int remake_atom(hl_alg *r, const alg_atom *at, const hl_alg *arg, hl_alg_ctx *ctx,
+                       hl_error *err)
+{
+    fmpq_t e;
+    int status;
+    switch (at->kind) {
+    case ATOM_SQRT: return hl_alg_apply(r, HL_SQRT, arg, ctx, err);
+    case ATOM_ROOT:
+        fmpq_init(e);
+        fmpq_set_si(e, 1, (ulong)at->q);
+        status = hl_alg_pow_fmpq(r, arg, e, ctx, err);
+        fmpq_clear(e);
+        return status;
+    case ATOM_SIN: return hl_alg_apply(r, HL_SIN, arg, ctx, err);
+    case ATOM_COS: return hl_alg_apply(r, HL_COS, arg, ctx, err);
+    case ATOM_EXP: return hl_alg_apply(r, HL_EXP, arg, ctx, err);
+    case ATOM_LOG: return hl_alg_apply(r, HL_LOG, arg, ctx, err);
+    case ATOM_ATAN: return hl_alg_apply(r, HL_ATAN, arg, ctx, err);
+    case ATOM_ASIN: return hl_alg_apply(r, HL_ASIN, arg, ctx, err);
+    case ATOM_ACOS: return hl_alg_apply(r, HL_ACOS, arg, ctx, err);
+    case ATOM_PI: return hl_alg_pi(r, ctx, err);
+    }
+    return HL_OK;
+}
+
+/* P(images) * prod_i den_i^(bound_i) as a polynomial (term by term). */
+static void compose_terms(fmpz_mpoly_t out, const fmpz_mpoly_t p, const hl_alg *img,
+                          const slong *bound, hl_alg_ctx *ctx)
+{
+    const fmpz_mpoly_ctx_struct *mc = ctx->mctx;
+    int nv = alg_nvars(ctx);
+    ulong *exp = hl_xmalloc((size_t)nv * sizeof *exp);
+    fmpz_mpoly_t t, u;
+    fmpz_mpoly_init(t, mc);
+    fmpz_mpoly_init(u, mc);
+    fmpz_mpoly_zero(out, mc);
+    for (slong i = 0; i < p->length; i++) {
+        fmpz_mpoly_get_term_exp_ui(exp, p, i, ctx->mctx);
+        fmpz_mpoly_set_fmpz(t, p->coeffs + i, mc);
+        for (int v = 0; v < nv; v++) {
+            if (exp[v] > 0) {
+                fmpz_mpoly_pow_ui(u, img[v].num, exp[v], mc);
+                fmpz_mpoly_mul(t, t, u, mc);
+            }
+            if (bound[v] > 0 && (ulong)bound[v] > exp[v] && !fmpz_mpoly_is_one(img[v].den, mc)) {
+                fmpz_mpoly_pow_ui(u, img[v].den, (ulong)bound[v] - exp[v], mc);
+                fmpz_mpoly_mul(t, t, u, mc);
+            }
+        }
+        fmpz_mpoly_add(out, out, t, mc);
+    }
+    fmpz_mpoly_clear(t, mc);
+    fmpz_mpoly_clear(u, mc);
+    free(exp);
+}
+
+typedef struct subst_state {
+    int n;
+    const int *vars;
+    hl_alg *img;          /* image of every variable, valid where known */
+    unsigned char *known;
+    unsigned char *moved; /* the image differs from the variable */
+    int natoms0;          /* atoms made while substituting need no image */
+} subst_state;
+
+static int subst_rec(hl_alg *r, const hl_alg *a, subst_state *st, hl_alg_ctx *ctx,
+                     hl_error *err);
+
+/* The image of atom k, made on demand: atoms that do not occur are never
+ * touched, and an argument only involves older atoms, so this ends. */
+static int atom_image(int k, subst_state *st, hl_alg_ctx *ctx, hl_error *err)
+{
+    const alg_atom *at = &ctx->atoms[k];
+    if (st->known[at->var])
+        return HL_OK;
+    int dep = 0, status = HL_OK;
+    for (int i = 0; i < st->n; i++)
+        dep |= at->dep[st->vars[i]];
+    if (dep && at->kind != ATOM_PI) {
+        hl_alg arg;
+        hl_alg_init(&arg, ctx);
+        status = subst_rec(&arg, &at->arg, st, ctx, err);
+        if (status == HL_OK)
+            status = remake_atom(&st->img[at->var], at, &arg, ctx, err);
+        hl_alg_clear(&arg, ctx);
+        st->moved[at->var] = 1;
+    }
+    st->known[at->var] = 1;
+    return status;
+}
+
+static int subst_rec(hl_alg *r, const hl_alg *a, subst_state *st, hl_alg_ctx *ctx,
+                     hl_error *err)
+{
+    const fmpz_mpoly_ctx_struct *mc = ctx->mctx;
+    int nv = alg_nvars(ctx), status = HL_OK;
+    slong *dn = hl_xmalloc((size_t)nv * sizeof *dn), *dd = hl_xmalloc((size_t)nv * sizeof *dd);
+    fmpz_mpoly_degrees_si(dn, a->num, mc);
+    fmpz_mpoly_degrees_si(dd, a->den, mc);
+    for (int k = 0; k < st->natoms0 && status == HL_OK; k++)
+        if (dn[ctx->atoms[k].var] > 0 || dd[ctx->atoms[k].var] > 0)
+            status = atom_image(k, st, ctx, err);
+    int all_poly = 1, any = 0;
+    for (int v = 0; v < nv && status == HL_OK; v++) {
+        dn[v] = dn[v] > dd[v] ? dn[v] : dd[v]; /* the bound on both */
+        if (!st->moved[v] || dn[v] <= 0)
+            continue;
+        any = 1;
+        all_poly &= fmpz_mpoly_is_one(st->img[v].den, mc);
+    }
+    hl_alg t;
+    hl_alg_init(&t, ctx);
+    if (status != HL_OK || !any) {
+        hl_alg_set(&t, a, ctx);
+    } else {
+        /* images of every variable: unmoved ones stand for themselves */
+        hl_alg *self = hl_alg_vec_new(nv, ctx);
+        for (int v = 0; v < nv; v++) {
+            if (st->moved[v])
+                hl_alg_set(&self[v], &st->img[v], ctx);
+            else
+                alg_set_var(&self[v], v, ctx);
+        }
+        if (all_poly) {
+            fmpz_mpoly_struct **C = hl_xmalloc((size_t)nv * sizeof *C);
+            for (int v = 0; v < nv; v++)
+                C[v] = self[v].num;
+            fmpz_mpoly_compose_fmpz_mpoly(t.num, a->num, C, mc, mc);
+            fmpz_mpoly_compose_fmpz_mpoly(t.den, a->den, C, mc, mc);
+            free(C);
+        } else {
+            for (int v = 0; v < nv; v++)
+                if (!st->moved[v])
+                    dn[v] = 0; /* no denominator to clear */
+            compose_terms(t.num, a->num, self, dn, ctx);
+            compose_terms(t.den, a->den, self, dn, ctx);
+        }
+        hl_alg_vec_free(self, nv, ctx);
+    }
+    if (status == HL_OK && any) {
+        if (fmpz_mpoly_is_zero(t.den, mc))
+            status = hl_error_set(err, HL_EDOM, NULL, -1, 0, "division by zero");
+        else
+            alg_canonicalise(&t, ctx);
+        /* a denominator that vanishes only modulo the relations */
+        if (status == HL_OK && fmpz_mpoly_is_zero(t.den, mc))
+            status = hl_error_set(err, HL_EDOM, NULL, -1, 0, "division by zero");
+    }
+    if (status == HL_OK)
+        hl_alg_swap(r, &t, ctx);
+    hl_alg_clear(&t, ctx);
+    free(dn);
+    free(dd);
+    return status;
+}
+
+int hl_alg_subst(hl_alg *r, const hl_alg *a, int n, const int *vars, const hl_alg *vals,
+                 hl_alg_ctx *ctx, hl_error *err)
+{
+    int nv = alg_nvars(ctx);
+    for (int i = 0; i < n; i++)
+        if (vars[i] < 0 || vars[i] >= ctx->nbase)
+            return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "no base symbol %d", vars[i]);
+    subst_state st;
+    st.n = n;
+    st.vars = vars;
+    st.natoms0 = ctx->natoms;
+    st.img = hl_alg_vec_new(nv, ctx);
+    st.known = hl_xcalloc((size_t)nv, 1);
+    st.moved = hl_xcalloc((size_t)nv, 1);
+    for (int i = 0; i < n; i++) {
+        hl_alg_set(&st.img[vars[i]], &vals[i], ctx);
+        st.moved[vars[i]] = st.known[vars[i]] = 1;
+    }
+    int status = subst_rec(r, a, &st, ctx, err);
+    hl_alg_vec_free(st.img, nv, ctx);
+    free(st.known);
+    free(st.moved);
+    return status;
+}
