@@ -51,6 +51,11 @@ hl_pool *hl_system_pool(hl_system *sys);
 const hl_alg *hl_system_H(const hl_system *sys);
 const hl_expr *hl_system_H_expr(const hl_system *sys); /* as typed, params set */
 
+/* Parameters given a value (--param): their number, names and values. */
+int hl_system_nset(const hl_system *sys);
+const char *hl_system_set_name(const hl_system *sys, int i);
+const hl_expr *hl_system_set_value(const hl_system *sys, int i);
+
 /* Base-symbol indices in the algebra context. */
 int hl_system_var_q(const hl_system *sys, int j); /* = j */
 int hl_system_var_p(const hl_system *sys, int j); /* = N + j */

@@ -1,0 +1,87 @@
+/* The hamlie command line: shared declarations of src/cli/. */
+#ifndef HAMLIE_CLI_H
+#define HAMLIE_CLI_H
+
+#include "base/buf.h"
+#include "hamlie/ham.h"
+#include "hamlie/report.h"
+
+#define HAMLIE_VERSION "0.1.0"
+
+/* Exit codes (documented in every --help). */
+enum { CLI_OK = 0, CLI_FAILS = 1, CLI_ERROR = 2 };
+
+typedef struct cli_command {
+    const char *name;
+    int (*fn)(int argc, char **argv);
+    const char *summary; /* one line for `hamlie --help` */
+    const char *help;    /* the full text for `hamlie help NAME` */
+} cli_command;
+
+const cli_command *cli_find(const char *name);
+
+/* Which options a command accepts beyond the common ones
+ * (--pairs, --param, --json, --latex, --help). */
+enum {
+    CLI_OPT_H = 1 << 0,        /* -H, --hamiltonian */
+    CLI_OPT_INTEGRAL = 1 << 1, /* --integral (repeatable) */
+    CLI_OPT_MAP = 1 << 2,      /* --map */
+    CLI_OPT_ORDER = 1 << 3,    /* --order, -n */
+    CLI_OPT_OF = 1 << 4,       /* --of (repeatable) */
+    CLI_OPT_TERMS = 1 << 5     /* --terms */
+};
+
+typedef enum cli_format { CLI_TEXT, CLI_JSON, CLI_LATEX } cli_format;
+
+typedef struct cli_opts {
+    const char *H, *pairs, *map;
+    char *params;             /* every --param joined with ',', or NULL */
+    cli_format format;
+    const char **integral;    /* --integral values */
+    int nintegral;
+    const char **of;          /* --of values */
+    int nof;
+    int order, have_order, terms;
+    char **args;              /* positional arguments */
+    int nargs;
+} cli_opts;
+
+/* Parse argv (argv[0] is the command's name).  Returns -1 to go on, or the
+ * exit code when done: 0 after printing --help, 2 after a usage error. */
+int cli_parse(cli_opts *o, int argc, char **argv, unsigned accept, const cli_command *cmd);
+void cli_opts_clear(cli_opts *o);
+
+/* Report a usage error ("hamlie CMD: <msg>" plus a hint); returns 2. */
+int cli_usage(const cli_command *cmd, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+
+/* Print an error with its formula and a caret under err->pos; returns 2. */
+int cli_fail(const hl_error *err);
+
+/* Write the finished output to stdout and make sure it got there; returns
+ * code, or 2 if writing failed. */
+int cli_emit(hl_buf *out, int code);
+
+/* The system of a command from its options; extra formulas count for the
+ * inference of the variables.  Prints the error and returns 2 on failure. */
+int cli_system(hl_system **sys, const cli_opts *o, const char *const *extra);
+
+/* The "symbols" object and "H" of the JSON output. */
+void cli_json_system(hl_json *j, hl_system *sys);
+
+/* The note said when a verdict rests on the numeric zero test. */
+void cli_numeric_note(hl_buf *out, hl_system *sys, cli_format f);
+
+/* A formula as typed, shown in a style (LaTeX re-prints the parsed form). */
+char *cli_show_input(const char *text, hl_system *sys, cli_format f);
+
+/* Name of the image of phase variable a in a map: x -> X, px -> PX. */
+char *cli_image_name(hl_system *sys, int a);
+
+int cmd_generator(int argc, char **argv);
+int cmd_bracket(int argc, char **argv);
+int cmd_check(int argc, char **argv);
+int cmd_canonical(int argc, char **argv);
+int cmd_lie(int argc, char **argv);
+
+#endif

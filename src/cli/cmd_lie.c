@@ -1,0 +1,170 @@
+/* hamlie lie: the Lie series exp(D g) phi = sum_k D^k/k! g^k phi (paper §2). */
+#include <stdlib.h>
+
+#include "cli/cli.h"
+
+/* One function phi: its text (or variable name) and its terms g^k phi. */
+typedef struct lie_item {
+    const char *text;
+    int is_var;
+    hl_alg *terms;
+} lie_item;
+
+static void write_item(hl_buf *out, hl_json *j, const lie_item *it, int order, hl_system *sys,
+                       const cli_opts *o)
+{
+    hl_alg_ctx *ctx = hl_system_ctx(sys);
+    hl_pool *pool = hl_system_pool(sys);
+    if (o->format == CLI_JSON) {
+        hl_alg c;
+        fmpq_t f;
+        hl_alg_init(&c, ctx);
+        fmpq_init(f);
+        hl_json_object_begin(j);
+        hl_json_kv_string(j, "input", it->text);
+        char *s = hl_format_alg(&it->terms[0], ctx, pool, HL_STYLE_SYMPY);
+        hl_json_kv_string(j, "function", s);
+        free(s);
+        s = hl_format_series(it->terms, order, "D", 1, ctx, pool, HL_STYLE_SYMPY);
+        hl_json_kv_string(j, "series", s);
+        free(s);
+        hl_json_key(j, "coefficients");
+        hl_json_array_begin(j);
+        fmpq_one(f);
+        for (int k = 0; k <= order; k++) {
+            if (k > 0) {
+                fmpz_mul_ui(fmpq_denref(f), fmpq_denref(f), (ulong)k); /* f = 1/k! */
+            }
+            hl_alg_scalar_mul_fmpq(&c, &it->terms[k], f, ctx);
+            s = hl_format_alg(&c, ctx, pool, HL_STYLE_SYMPY);
+            hl_json_string(j, s);
+            free(s);
+        }
+        hl_json_array_end(j);
+        if (o->terms) {
+            hl_json_key(j, "terms");
+            hl_json_array_begin(j);
+            for (int k = 0; k <= order; k++) {
+                s = hl_format_alg(&it->terms[k], ctx, pool, HL_STYLE_SYMPY);
+                hl_json_string(j, s);
+                free(s);
+            }
+            hl_json_array_end(j);
+        }
+        hl_json_object_end(j);
+        hl_alg_clear(&c, ctx);
+        fmpq_clear(f);
+        return;
+    }
+    int latex = o->format == CLI_LATEX;
+    hl_style st = latex ? HL_STYLE_LATEX : HL_STYLE_TEXT;
+    char *phi = it->is_var ? (latex ? hl_symbol_latex(it->text) : hl_xstrdup(it->text))
+                           : cli_show_input(it->text, sys, o->format);
+    const char *wrap = it->is_var ? "%s" : (latex ? "\\left(%s\\right)" : "(%s)");
+    char *s = hl_format_series(it->terms, order, "D", 1, ctx, pool, st);
+    hl_buf_puts(out, latex ? "\\exp(D\\,\\mathfrak{g})\\, " : "exp(D 𝔤) ");
+    hl_buf_printf(out, wrap, phi);
+    hl_buf_printf(out, " = %s", s);
+    hl_buf_printf(out, latex ? " + O(D^{%d})\n" : " + O(D^%d)\n", order + 1);
+    free(s);
+    if (o->terms)
+        for (int k = 0; k <= order; k++) {
+            s = hl_format_alg(&it->terms[k], ctx, pool, st);
+            hl_buf_printf(out, latex ? "  \\mathfrak{g}^{%d} " : "  𝔤^%d ", k);
+            hl_buf_printf(out, wrap, phi);
+            hl_buf_printf(out, " = %s\n", s);
+            free(s);
+        }
+    free(phi);
+}
+
+static int run(hl_buf *out, hl_system *sys, const cli_opts *o, int order, hl_error *err)
+{
+    hl_alg_ctx *ctx = hl_system_ctx(sys);
+    int N = hl_system_ndof(sys), n = o->nof ? o->nof : 2 * N, st = HL_OK;
+    lie_item *it = hl_xcalloc((size_t)n, sizeof *it);
+    hl_alg phi;
+    hl_alg_init(&phi, ctx);
+    for (int i = 0; i < n; i++)
+        it[i].terms = hl_alg_vec_new(order + 1 > 0 ? order + 1 : 1, ctx);
+    for (int i = 0; i < n && st == HL_OK; i++) {
+        if (o->nof) {
+            it[i].text = o->of[i];
+            if ((st = hl_system_read(&phi, sys, o->of[i], err)) != HL_OK) {
+                hl_error_prefix(err, "in --of");
+                break;
+            }
+        } else {
+            it[i].is_var = 1;
+            it[i].text = i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N);
+            hl_alg_gen(&phi, i, ctx);
+        }
+        st = hl_lie_terms(it[i].terms, &phi, order, sys, err);
+    }
+    if (st == HL_OK) {
+        hl_json j;
+        if (o->format == CLI_JSON) {
+            hl_json_init_buf(&j, out);
+            hl_json_object_begin(&j);
+            hl_json_kv_string(&j, "command", "lie");
+            cli_json_system(&j, sys);
+            hl_json_kv_int(&j, "order", order);
+            hl_json_key(&j, "series");
+            hl_json_array_begin(&j);
+        }
+        for (int i = 0; i < n; i++)
+            write_item(out, &j, &it[i], order, sys, o);
+        if (o->format == CLI_JSON) {
+            hl_json_array_end(&j);
+            hl_json_kv_bool(&j, "numeric_zero_test", hl_alg_ctx_numeric_used(ctx));
+            hl_json_object_end(&j);
+            hl_json_finish(&j);
+        } else
+            cli_numeric_note(out, sys, o->format);
+    }
+    for (int i = 0; i < n; i++)
+        hl_alg_vec_free(it[i].terms, order + 1 > 0 ? order + 1 : 1, ctx);
+    free(it);
+    hl_alg_clear(&phi, ctx);
+    return st;
+}
+
+int cmd_lie(int argc, char **argv)
+{
+    const cli_command *cmd = cli_find("lie");
+    cli_opts o;
+    hl_system *sys = NULL;
+    hl_error err;
+    hl_buf out;
+    int rc = cli_parse(&o, argc, argv, CLI_OPT_H | CLI_OPT_ORDER | CLI_OPT_OF | CLI_OPT_TERMS,
+                       cmd);
+
+    if (rc >= 0) { /* --help printed, or a usage error reported */
+        cli_opts_clear(&o);
+        return rc;
+    }
+    hl_error_clear(&err);
+    hl_buf_init(&out);
+    if (rc < 0 && o.H == NULL)
+        rc = cli_usage(cmd, "missing -H: the Lie series needs a Hamiltonian");
+    if (rc < 0 && o.nargs > 0)
+        rc = cli_usage(cmd, "unexpected argument '%s' (give functions with --of)", o.args[0]);
+    if (rc < 0 && o.have_order && o.order < 0)
+        rc = cli_usage(cmd, "--order must be at least 0, not %d", o.order);
+    if (rc < 0 && o.have_order && o.order > HL_LIE_MAX_ORDER) {
+        fprintf(stderr, "hamlie: error: --order %d refused: the Lie series is limited to "
+                        "order %d\n", o.order, HL_LIE_MAX_ORDER);
+        rc = CLI_ERROR;
+    }
+    if (rc < 0) {
+        rc = cli_system(&sys, &o, NULL); /* H alone defines the system */
+    }
+    if (rc == CLI_OK) {
+        int order = o.have_order ? o.order : 4;
+        rc = run(&out, sys, &o, order, &err) == HL_OK ? cli_emit(&out, CLI_OK) : cli_fail(&err);
+    }
+    hl_buf_clear(&out);
+    hl_system_free(sys);
+    cli_opts_clear(&o);
+    return rc;
+}

@@ -1,0 +1,141 @@
+/* What every command shares: errors with a caret, the all-or-nothing output,
+ * building the system from the options, the JSON "symbols" block. */
+#include <ctype.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli/cli.h"
+
+int cli_fail(const hl_error *err)
+{
+    fprintf(stderr, "hamlie: error: %s\n", err->msg[0] ? err->msg : hl_status_string(err->status));
+    if (err->src == NULL)
+        return CLI_ERROR;
+    if (err->pos < 0) { /* about the formula as a whole: show it */
+        fprintf(stderr, "  %s\n", err->src);
+        return CLI_ERROR;
+    }
+    /* The formula on one line, then a caret under the bad spot: count
+     * characters, not bytes, so UTF-8 before the spot keeps it aligned. */
+    fputs("  ", stderr);
+    for (const char *c = err->src; *c; c++)
+        fputc(*c == '\t' || *c == '\n' ? ' ' : *c, stderr);
+    fputs("\n  ", stderr);
+    int n = (int)strlen(err->src), pos = err->pos > n ? n : err->pos;
+    for (int i = 0; i < pos; i++)
+        if (((unsigned char)err->src[i] & 0xC0) != 0x80)
+            fputc(' ', stderr);
+    fputc('^', stderr);
+    for (int i = 1; i < err->len && pos + i < n; i++)
+        if (((unsigned char)err->src[pos + i] & 0xC0) != 0x80)
+            fputc('~', stderr);
+    fputc('\n', stderr);
+    return CLI_ERROR;
+}
+
+int cli_emit(hl_buf *out, int code)
+{
+    if (out->len > 0 && fwrite(out->s, 1, out->len, stdout) != out->len)
+        code = CLI_ERROR;
+    if (fflush(stdout) != 0 || ferror(stdout))
+        code = CLI_ERROR;
+    if (code == CLI_ERROR)
+        fprintf(stderr, "hamlie: error: writing to standard output failed\n");
+    hl_buf_clear(out);
+    return code;
+}
+
+int cli_system(hl_system **sys, const cli_opts *o, const char *const *extra)
+{
+    hl_system_spec spec = {o->H, o->pairs, o->params, extra};
+    hl_error err;
+    hl_error_clear(&err);
+    if (hl_system_new(sys, &spec, &err) != HL_OK) {
+        if (err.src != NULL && o->pairs != NULL && err.src == o->pairs)
+            hl_error_prefix(&err, "in --pairs");
+        else if (err.src != NULL && o->params != NULL && err.src == o->params)
+            hl_error_prefix(&err, "in --param");
+        return cli_fail(&err);
+    }
+    return CLI_OK;
+}
+
+static void json_names(hl_json *j, const char *key, hl_system *sys,
+                       const char *(*get)(const hl_system *, int), int n)
+{
+    hl_json_key(j, key);
+    hl_json_array_begin(j);
+    for (int i = 0; i < n; i++)
+        hl_json_string(j, get(sys, i));
+    hl_json_array_end(j);
+}
+
+void cli_json_system(hl_json *j, hl_system *sys)
+{
+    int n = hl_system_ndof(sys);
+    hl_json_key(j, "symbols");
+    hl_json_object_begin(j);
+    json_names(j, "coordinates", sys, hl_system_coord, n);
+    json_names(j, "momenta", sys, hl_system_momentum, n);
+    json_names(j, "parameters", sys, hl_system_param, hl_system_nparams(sys));
+    hl_json_kv_string(j, "step", "D");
+    hl_json_object_end(j);
+    hl_json_key(j, "parameter_values");
+    hl_json_object_begin(j);
+    for (int i = 0; i < hl_system_nset(sys); i++) {
+        char *s = hl_expr_print(hl_system_set_value(sys, i), HL_STYLE_SYMPY);
+        hl_json_kv_string(j, hl_system_set_name(sys, i), s);
+        free(s);
+    }
+    hl_json_object_end(j);
+    if (hl_system_has_H(sys)) {
+        char *s = hl_format_alg(hl_system_H(sys), hl_system_ctx(sys), hl_system_pool(sys),
+                                HL_STYLE_SYMPY);
+        hl_json_kv_string(j, "H", s);
+        free(s);
+    } else {
+        hl_json_key(j, "H");
+        hl_json_null(j);
+    }
+}
+
+void cli_numeric_note(hl_buf *out, hl_system *sys, cli_format f)
+{
+    if (!hl_alg_ctx_numeric_used(hl_system_ctx(sys)))
+        return;
+    const char *note = "a zero above was decided by a numeric test at random points "
+                       "(Arb, high precision), not proved exactly";
+    if (f == CLI_LATEX)
+        hl_buf_printf(out, "%% note: %s\n", note);
+    else
+        hl_buf_printf(out, "note: %s\n", note);
+}
+
+char *cli_show_input(const char *text, hl_system *sys, cli_format f)
+{
+    if (f == CLI_LATEX) {
+        const hl_expr *e;
+        if (hl_parse(&e, hl_system_pool(sys), text, NULL) == HL_OK)
+            return hl_expr_print(e, HL_STYLE_LATEX);
+    }
+    /* As typed, without the spaces around it. */
+    while (isspace((unsigned char)*text))
+        text++;
+    size_t n = strlen(text);
+    while (n > 0 && isspace((unsigned char)text[n - 1]))
+        n--;
+    char *s = hl_xmalloc(n + 1);
+    memcpy(s, text, n);
+    s[n] = '\0';
+    return s;
+}
+
+char *cli_image_name(hl_system *sys, int a)
+{
+    int n = hl_system_ndof(sys);
+    char *s = hl_xstrdup(a < n ? hl_system_coord(sys, a) : hl_system_momentum(sys, a - n));
+    for (char *c = s; *c; c++)
+        *c = (char)toupper((unsigned char)*c);
+    return s;
+}

@@ -1,0 +1,228 @@
+/* Formulas for people and scripts: elements, vector fields, series in D.
+ *
+ * Signs and rational factors are pulled out of each printed term so that a
+ * sum reads "p ∂/∂x − x ∂/∂p" and "x + D*p - D^2/2*x" rather than
+ * "(-1*x) ∂/∂p" or "D^2*(-x/2)". */
+#include <stdlib.h>
+#include <string.h>
+
+#include <flint/fmpq.h>
+
+#include "base/buf.h"
+#include "hamlie/report.h"
+
+char *hl_format_alg(const hl_alg *a, hl_alg_ctx *ctx, hl_pool *pool, hl_style style)
+{
+    return hl_expr_print(hl_alg_to_expr(a, ctx, pool), style);
+}
+
+/* Split e = r * rest, taking r from the numbers on the left spine of the
+ * products and quotients (and from negations).  rest is NULL when e is a
+ * number. */
+static const hl_expr *split_num(fmpq_t r, const hl_expr *e, hl_pool *pool)
+{
+    const hl_expr *a;
+    switch (e->kind) {
+    case HL_NUM:
+        fmpq_set(r, e->num);
+        return NULL;
+    case HL_NEG:
+        a = split_num(r, e->a, pool);
+        fmpq_neg(r, r);
+        return a;
+    case HL_MUL:
+        a = split_num(r, e->a, pool);
+        return a ? hl_mul(pool, a, e->b) : e->b;
+    case HL_DIV:
+        a = split_num(r, e->a, pool);
+        if (e->b->kind == HL_NUM && !fmpq_is_zero(e->b->num)) {
+            fmpq_div(r, r, e->b->num);
+            return a;
+        }
+        return hl_div(pool, a ? a : hl_num_si(pool, 1), e->b);
+    default:
+        fmpq_one(r);
+        return e;
+    }
+}
+
+/* f*rest written left to right: f*(a*b) as f*a*b, f*(a/b) as f*a/b, which
+ * is the same value and reads without parentheses. */
+static const hl_expr *mul_flat(const hl_expr *f, const hl_expr *rest, hl_pool *pool)
+{
+    if (rest->kind == HL_MUL)
+        return hl_mul(pool, mul_flat(f, rest->a, pool), rest->b);
+    if (rest->kind == HL_DIV)
+        return hl_div(pool, mul_flat(f, rest->a, pool), rest->b);
+    return hl_mul(pool, f, rest);
+}
+
+static int is_sum(const hl_expr *e)
+{
+    return e->kind == HL_ADD || e->kind == HL_SUB;
+}
+
+/* |r| * rest as an expression (r != 0): "rest", "3*rest", "3*rest/2", "3/2". */
+static const hl_expr *scaled(const fmpq_t r, const hl_expr *rest, hl_pool *pool)
+{
+    fmpq_t a;
+    fmpq_init(a);
+    fmpq_abs(a, r);
+    const hl_expr *e;
+    if (rest == NULL)
+        e = hl_num_fmpq(pool, a);
+    else {
+        e = rest;
+        if (!fmpz_is_one(fmpq_numref(a))) {
+            fmpq_t n;
+            fmpq_init(n);
+            fmpz_set(fmpq_numref(n), fmpq_numref(a));
+            e = mul_flat(hl_num_fmpq(pool, n), e, pool);
+            fmpq_clear(n);
+        }
+        if (!fmpz_is_one(fmpq_denref(a))) {
+            fmpq_t d;
+            fmpq_init(d);
+            fmpz_set(fmpq_numref(d), fmpq_denref(a));
+            e = hl_div(pool, e, hl_num_fmpq(pool, d));
+            fmpq_clear(d);
+        }
+    }
+    fmpq_clear(a);
+    return e;
+}
+
+static int is_one(const hl_expr *e)
+{
+    return e->kind == HL_NUM && fmpq_is_one(e->num);
+}
+
+/* ---- vector fields ---------------------------------------------------------- */
+
+static void put_operator(hl_buf *b, const char *name, hl_style style)
+{
+    if (style == HL_STYLE_LATEX) {
+        char *l = hl_symbol_latex(name);
+        hl_buf_printf(b, "\\frac{\\partial}{\\partial %s}", l);
+        free(l);
+    } else
+        hl_buf_printf(b, "\u2202/\u2202%s", name);
+}
+
+char *hl_format_vector_field(int n, const char *const *names, const hl_alg *c,
+                             hl_alg_ctx *ctx, hl_pool *pool, hl_style style)
+{
+    int latex = style == HL_STYLE_LATEX, first = 1;
+    hl_buf b;
+    fmpq_t r;
+    hl_buf_init(&b);
+    fmpq_init(r);
+    for (int i = 0; i < n; i++) {
+        if (hl_alg_is_zero(&c[i], ctx))
+            continue;
+        const hl_expr *rest = split_num(r, hl_alg_to_expr(&c[i], ctx, pool), pool);
+        const hl_expr *mag = scaled(r, rest, pool);
+        int neg = fmpq_sgn(r) < 0;
+        if (first)
+            hl_buf_puts(&b, neg ? (latex ? "-" : "\u2212") : "");
+        else
+            hl_buf_puts(&b, neg ? (latex ? " - " : " \u2212 ") : " + ");
+        first = 0;
+        if (!is_one(mag)) {
+            char *s = hl_expr_print(mag, latex ? HL_STYLE_LATEX : HL_STYLE_TEXT);
+            if (is_sum(mag))
+                hl_buf_printf(&b, latex ? "\\left(%s\\right) " : "(%s) ", s);
+            else
+                hl_buf_printf(&b, "%s ", s);
+            free(s);
+        }
+        put_operator(&b, names[i], style);
+    }
+    fmpq_clear(r);
+    if (first)
+        hl_buf_puts(&b, "0");
+    return hl_buf_take(&b);
+}
+
+void hl_json_vector_field(hl_json *j, int n, const char *const *names, const hl_alg *c,
+                          hl_alg_ctx *ctx, hl_pool *pool, hl_style style)
+{
+    hl_json_object_begin(j);
+    for (int i = 0; i < n; i++) {
+        char *s = hl_format_alg(&c[i], ctx, pool, style);
+        hl_json_kv_string(j, names[i], s);
+        free(s);
+    }
+    hl_json_object_end(j);
+}
+
+/* ---- series ---------------------------------------------------------------- */
+
+/* |r| var^k * rest, written "var^k/2*rest", "3*var^k*rest", ... */
+static const hl_expr *series_term(const fmpq_t r, int k, const hl_expr *var,
+                                  const hl_expr *rest, hl_pool *pool)
+{
+    fmpq_t a, t;
+    fmpq_init(a);
+    fmpq_init(t);
+    fmpq_abs(a, r);
+    const hl_expr *f = NULL;
+    if (k == 1)
+        f = var;
+    else if (k > 1)
+        f = hl_pow(pool, var, hl_num_si(pool, k));
+    if (f == NULL)
+        f = rest ? NULL : hl_num_fmpq(pool, a);
+    else {
+        if (!fmpz_is_one(fmpq_numref(a))) {
+            fmpz_set(fmpq_numref(t), fmpq_numref(a));
+            f = hl_mul(pool, hl_num_fmpq(pool, t), f);
+        }
+        if (!fmpz_is_one(fmpq_denref(a))) {
+            fmpq_zero(t);
+            fmpz_set(fmpq_numref(t), fmpq_denref(a));
+            f = hl_div(pool, f, hl_num_fmpq(pool, t));
+        }
+    }
+    const hl_expr *e;
+    if (f == NULL) /* k = 0 with a rest: the scaled rest itself */
+        e = scaled(a, rest, pool);
+    else
+        e = rest ? mul_flat(f, rest, pool) : f;
+    fmpq_clear(a);
+    fmpq_clear(t);
+    return e;
+}
+
+char *hl_format_series(const hl_alg *terms, int order, const char *var, int factorial,
+                       hl_alg_ctx *ctx, hl_pool *pool, hl_style style)
+{
+    const hl_expr *sum = NULL, *v = hl_sym(pool, var);
+    fmpq_t r, kf;
+    fmpq_init(r);
+    fmpq_init(kf);
+    fmpq_one(kf);
+    for (int k = 0; k <= order; k++) {
+        if (factorial && k > 0) {
+            fmpz_t kk;
+            fmpz_init_set_ui(kk, (ulong)k);
+            fmpq_div_fmpz(kf, kf, kk); /* kf = 1/k! */
+            fmpz_clear(kk);
+        }
+        if (hl_alg_is_zero(&terms[k], ctx))
+            continue;
+        const hl_expr *rest = split_num(r, hl_alg_to_expr(&terms[k], ctx, pool), pool);
+        fmpq_mul(r, r, kf);
+        const hl_expr *t = series_term(r, k, v, rest, pool);
+        int neg = fmpq_sgn(r) < 0;
+        if (sum == NULL)
+            sum = neg ? hl_neg(pool, t) : t;
+        else
+            sum = neg ? hl_sub(pool, sum, t) : hl_add(pool, sum, t);
+    }
+    fmpq_clear(r);
+    fmpq_clear(kf);
+    if (sum == NULL)
+        sum = hl_num_si(pool, 0);
+    return hl_expr_print(sum, style);
+}
