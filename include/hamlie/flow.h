@@ -1,0 +1,96 @@
+/* hamlie — the Taylor (Lie-series) integrator.
+ *
+ * Integrates an autonomous ODE z' = f(z) given as a square tape (n inputs,
+ * n outputs; for a Hamiltonian see hl_tape_hamiltonian, then each step is a
+ * numeric Lie series exp(h g) z).  Each step computes the Taylor coefficients
+ * z^[0..p] at the current point (hl_tape_taylor_ode_*), picks the step from
+ * them and sums the polynomial.  Order and step follow Jorba & Zou,
+ * Experiment. Math. 14 (2005) 99-117:
+ *
+ *   p = ceil(-ln(tol) / 2) + 1,           tol = min(atol, rtol)
+ *   eps = max(atol, rtol * |z|_inf)       (absolute + relative)
+ *   h = min_{k = p-1, p} (eps / |z^[k]|_inf)^(1/k) * exp(-0.7 / (p - 1))
+ *
+ * Dense output: the polynomial of a step is valid over the whole step, so
+ * outputs at given times are evaluated on it, without shortening steps (only
+ * the last step is cut to land exactly on the final time).  Time is carried
+ * in double-double, so that thousands of steps do not drift by rounding t.
+ *
+ * Errors name the time: a step that produces a NaN or an infinity
+ * (HL_EDOM), or a step size that underflows (HL_ENOCONV).  On error z and t
+ * hold the last good step.
+ *
+ * A flow borrows its tape (which must outlive it) and uses the tape's
+ * scratch: one thread per flow and tape.  For long runs in double, compile
+ * the tape's recursion first: hl_tape_native(f, hl_flow_order(flow), err)
+ * (tape.h); the flow then runs the machine code.
+ */
+#ifndef HAMLIE_FLOW_H
+#define HAMLIE_FLOW_H
+
+#include <arb.h>
+#include "hamlie/error.h"
+#include "hamlie/tape.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- double ------------------------------------------------------------ */
+
+typedef struct hl_flow hl_flow;
+
+/* atol, rtol > 0.  HL_EINVAL if the tape is not square or a tolerance is
+ * not positive. */
+int hl_flow_new(hl_flow **out, hl_tape *f, double atol, double rtol, hl_error *err);
+void hl_flow_free(hl_flow *flow); /* NULL is a no-op */
+
+int hl_flow_order(const hl_flow *flow);
+long hl_flow_nsteps(const hl_flow *flow); /* steps taken since creation */
+
+/* Integrate from *t to t1 (either direction); z (n values) in and out.
+ * On success *t == t1. */
+int hl_flow_evolve(hl_flow *flow, double *t, double t1, double *z, hl_error *err);
+
+/* Called at each output time with the state there; a non-zero return stops
+ * the run, and hl_flow_run returns that value. */
+typedef int (*hl_flow_fn)(double t, const double *z, void *arg);
+
+/* Start at (t0, z0) and call fn at ts[0..n-1], which must be monotone in
+ * the direction of ts[n-1] - t0 (ts[0] may equal t0). */
+int hl_flow_run(hl_flow *flow, double t0, const double *z0, const double *ts, int n,
+                hl_flow_fn fn, void *arg, hl_error *err);
+
+/* The same, storing out[i*dim + j] = z_j(ts[i]). */
+int hl_flow_eval_at(hl_flow *flow, double t0, const double *z0, const double *ts, int n,
+                    double *out, hl_error *err);
+
+/* ---- Arb ---------------------------------------------------------------
+ * The same integrator in Arb at about digits decimal digits (tolerance
+ * 10^-digits, absolute and relative; precision digits*log2(10) + 32 bits).
+ * This is multiprecision floating point, not a validated integrator: the
+ * truncation error is not enclosed, and only midpoints are carried from
+ * step to step (the radii of interval arithmetic would otherwise grow with
+ * every step); output balls are exact midpoints. */
+
+typedef struct hl_flow_arb hl_flow_arb;
+
+int hl_flow_arb_new(hl_flow_arb **out, hl_tape *f, double digits, hl_error *err);
+void hl_flow_arb_free(hl_flow_arb *flow); /* NULL is a no-op */
+
+int hl_flow_arb_order(const hl_flow_arb *flow);
+slong hl_flow_arb_prec(const hl_flow_arb *flow);
+long hl_flow_arb_nsteps(const hl_flow_arb *flow);
+
+int hl_flow_arb_evolve(hl_flow_arb *flow, arb_t t, const arb_t t1, arb_ptr z, hl_error *err);
+
+typedef int (*hl_flow_arb_fn)(const arb_t t, arb_srcptr z, void *arg);
+
+int hl_flow_arb_run(hl_flow_arb *flow, const arb_t t0, arb_srcptr z0, arb_srcptr ts, int n,
+                    hl_flow_arb_fn fn, void *arg, hl_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,162 @@
+/* hamlie — tapes: expressions compiled into straight-line numeric programs.
+ *
+ * A tape is built once from an expression DAG with several outputs and the
+ * names of its inputs.  Every shared subexpression is computed once (the DAG
+ * is hash-consed, so pointer identity is common-subexpression elimination;
+ * the compiler also shares identical instructions, e.g. sin(a) and cos(a)
+ * become one SINCOS).  Subtrees without inputs are folded into constants.
+ *
+ * A tape is read three ways:
+ *   - in double, by a tight interpreter loop (no allocation per call);
+ *   - in Arb, at any precision (bits);
+ *   - in Taylor mode: every register holds a truncated power series
+ *     x(t) = sum_k x^[k] t^k (normalised Taylor coefficients), in double or
+ *     in Arb.  For an autonomous ODE z' = f(z) given as a tape with n inputs
+ *     and n outputs, hl_tape_taylor_ode_* gives the Taylor coefficients of the
+ *     solution through z0, order by order: z^[k+1] = f(z)^[k] / (k+1).  For
+ *     the Hamiltonian vector field this is the numeric Lie series exp(t g) z.
+ *
+ * Register layout: inputs first, then constants, then one register per
+ * instruction.  In Taylor mode register r's coefficients are contiguous.
+ *
+ * A tape owns its scratch space, so one tape must not be evaluated by two
+ * threads at once; build one tape per thread.  It does not keep a reference
+ * to the expressions or their pool.
+ */
+#ifndef HAMLIE_TAPE_H
+#define HAMLIE_TAPE_H
+
+#include <arb.h>
+#include "hamlie/error.h"
+#include "hamlie/expr.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- opcodes ------------------------------------------------------------
+ * d = destination register, a, b = operand registers, k = a constant
+ * register (its series is k^[0], 0, 0, ...), x = aux register (second
+ * result or auxiliary series kept for the recurrence).  The recurrence gives
+ * coefficient k of the result from coefficients 0..k of the operands and
+ * 0..k-1 of the result (Jorba & Zou 2005; Hairer-Norsett-Wanner I.8).
+ * Below, (x*y)^[k] = sum_{j=0..k} x^[j] y^[k-j].
+ *
+ * Rational factors do not become instructions where they can be carried:
+ * the compiler keeps every value as (rational scale) * register, so the
+ * (2*p)/2 that differentiation writes compiles to p, and x/3 to a scale of
+ * 1/3; a scale becomes a MULK (or NEG) only under a function, a non-integer
+ * power, or at an output.  The K-ops below meet constants that are not
+ * rational (pi, log 2, ...) or that carry no scale.  A few rewrites tidy
+ * what differentiation writes: sqrt(w)^2 -> w, a * (1/u) -> a/u,
+ * (x/u)/w -> x/(u w) (u w then shared between components); instructions
+ * nobody reads are dropped.  Like any algebraic folding these take x - x,
+ * 0*x and sqrt(w)^2 at face value even where x is inf or NaN, or w < 0.
+ *
+ * Integer powers a^n (|n| <= HL_TAPE_POWI_MAX) are lowered by the compiler
+ * to SQR / MUL (and KDIV for n < 0) by binary powering: exact in every mode
+ * and stable when a^[0] = 0 (the pow recurrence divides by a^[0]).  A power
+ * a^b with non-constant b is lowered to exp(b log a).
+ */
+typedef enum hl_op {
+    /* op        args      value           Taylor coefficient k            */
+    HL_OP_NEG,  /* d a      -a              -a[k]                            */
+    HL_OP_ADD,  /* d a b    a + b           a[k] + b[k]                      */
+    HL_OP_SUB,  /* d a b    a - b           a[k] - b[k]                      */
+    HL_OP_MUL,  /* d a b    a * b           (a*b)[k]                         */
+    HL_OP_DIV,  /* d a b    a / b           (a[k] - sum_{j=1..k} b[j] d[k-j]) / b[0] */
+    HL_OP_SQR,  /* d a      a^2             (a*a)[k], using symmetry         */
+    HL_OP_ADDK, /* d a k    a + k           a[k] (+ k at order 0)            */
+    HL_OP_SUBK, /* d a k    a - k           a[k] (- k at order 0)            */
+    HL_OP_KSUB, /* d a k    k - a           -a[k] (k - a[0] at order 0)      */
+    HL_OP_MULK, /* d a k    a * k           k a[k]                           */
+    HL_OP_DIVK, /* d a k    a / k           a[k] / k                         */
+    HL_OP_KDIV, /* d a k    k / a           -(sum_{j=1..k} a[j] d[k-j]) / a[0], k >= 1 */
+    HL_OP_POWK, /* d a k    a^c, c = k real (sum_{j=0..k-1} (c(k-j) - j) a[k-j] d[j]) / (k a[0]) */
+    HL_OP_SQRT, /* d a      sqrt(a)         (a[k] - sum_{j=1..k-1} d[j] d[k-j]) / (2 d[0]) */
+    HL_OP_EXP,  /* d a      exp(a)          (1/k) sum_{j=1..k} j a[j] d[k-j] */
+    HL_OP_LOG,  /* d a      log(a)          (k a[k] - sum_{j=1..k-1} (k-j) a[j] d[k-j]) / (k a[0]) */
+    HL_OP_SINCOS, /* d a x  d=sin a, x=cos a  d[k] = (1/k) sum j a[j] x[k-j];
+                                              x[k] = -(1/k) sum j a[j] d[k-j]   */
+    HL_OP_SINHCOSH, /* d a x d=sinh, x=cosh   as SINCOS without the minus      */
+    HL_OP_TAN,  /* d a x    tan a; x=d^2    d[k] = a[k] + (1/k) sum_{j=1..k} j a[j] x[k-j];
+                                            then x[k] = (d*d)[k]                 */
+    HL_OP_TANH, /* d a x    tanh a; x=d^2   d[k] = a[k] - (1/k) sum_{j=1..k} j a[j] x[k-j]; x[k] = (d*d)[k] */
+    HL_OP_ATAN, /* d a x    atan a; x=1+a^2 x[k] = [k=0] + (a*a)[k];
+                                            d[k] = (k a[k] - sum_{j=1..k-1} (k-j) x[j] d[k-j]) / (k x[0]) */
+    HL_OP_ASIN, /* d a x    asin a; x=sqrt(1-a^2)  x by the SQRT rule on 1-(a*a);
+                                            d[k] as ATAN with this x               */
+    HL_OP_ACOS, /* d a x    acos a; x=sqrt(1-a^2)  d[k] = -(k a[k] + sum_{j=1..k-1} (k-j) x[j] d[k-j]) / (k x[0]) */
+    HL_OP_COUNT
+} hl_op;
+
+#define HL_TAPE_POWI_MAX 64
+
+typedef struct hl_tape hl_tape;
+
+/* Compile outputs outs[0..nout-1] over inputs named inputs[0..nin-1].  Any
+ * other symbol is an error (HL_EINVAL, "unknown symbol 'z'").  Constant
+ * subtrees are folded; one that is not finite in double (1/0, log(0)) is
+ * HL_EDOM. */
+int hl_tape_new(hl_tape **out, const hl_expr *const *outs, int nout,
+                const char *const *inputs, int nin, hl_error *err);
+void hl_tape_free(hl_tape *tape); /* NULL is a no-op */
+
+int hl_tape_ninputs(const hl_tape *tape);
+int hl_tape_noutputs(const hl_tape *tape);
+int hl_tape_nops(const hl_tape *tape);     /* instructions in the body */
+int hl_tape_nregs(const hl_tape *tape);
+const char *hl_op_name(hl_op op);
+
+/* Print the program, one instruction a line (for debugging and docs).
+ * malloc'd. */
+char *hl_tape_print(const hl_tape *tape);
+
+/* The Hamiltonian vector field of H with N degrees of freedom: inputs
+ * q_1..q_N, p_1..p_N; outputs dH/dp_1..dH/dp_N, -dH/dq_1..-dH/dq_N.  The
+ * parameters params[i] are replaced by the expressions vals[i] first. */
+int hl_tape_hamiltonian(hl_tape **out, hl_pool *pool, const hl_expr *H, int N,
+                        const char *const *q, const char *const *p, int nparams,
+                        const char *const *params, const hl_expr *const *vals,
+                        hl_error *err);
+
+/* ---- evaluation ------------------------------------------------------- */
+
+/* out[0..nout-1] = f(in[0..nin-1]).  Results may be inf or nan. */
+void hl_tape_eval_d(double *out, const double *in, hl_tape *tape);
+
+/* The same in Arb at prec bits (out must hold nout initialised arbs). */
+void hl_tape_eval_arb(arb_ptr out, arb_srcptr in, slong prec, hl_tape *tape);
+
+/* Taylor mode.  in[i*(order+1) + k] is coefficient k of input i; writes
+ * out[j*(order+1) + k] for output j, k = 0..order. */
+void hl_tape_taylor_d(double *out, const double *in, int order, hl_tape *tape);
+void hl_tape_taylor_arb(arb_ptr out, arb_srcptr in, int order, slong prec, hl_tape *tape);
+
+/* Taylor coefficients of the solution of z' = f(z) (nin == nout = n):
+ * z[i*(order+1) + 0] holds z_i(0) on entry; on return z[i*(order+1) + k]
+ * holds z_i^[k] for k = 0..order.  Cost O(order^2) per instruction.
+ * HL_EINVAL if the tape is not square. */
+int hl_tape_taylor_ode_d(double *z, int order, hl_tape *tape, hl_error *err);
+int hl_tape_taylor_ode_arb(arb_ptr z, int order, slong prec, hl_tape *tape, hl_error *err);
+
+/* ---- native code (opt-in) ------------------------------------------------
+ * Compile the Taylor-ODE recursion at this order to machine code: the C
+ * source is generated (straight-line, every sum written out), compiled with
+ * the system C compiler ($HL_CC, else "cc") into a temporary shared object
+ * and loaded; hl_tape_taylor_ode_d at this order then runs it instead of the
+ * interpreter, with the same results up to the order of additions.  Costs
+ * one compiler run (tenths of a second to seconds, growing with tape size
+ * times order squared): for long runs.  HL_EUNSUP if no compiler runs or
+ * dynamic loading fails (the interpreter keeps working); HL_EIO if the
+ * temporary files cannot be written; HL_ELIMIT for a source that would be
+ * too large (instructions * order^2 / 2 > 4e6 terms).  The code is built
+ * with -march=native: it is made on and for the machine that runs it. */
+int hl_tape_native(hl_tape *tape, int order, hl_error *err);
+void hl_tape_native_clear(hl_tape *tape); /* back to the interpreter */
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,206 @@
+/* The Taylor integrator in double (see hamlie/flow.h). */
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/buf.h"
+#include "flow/flow_impl.h"
+#include "hamlie/flow.h"
+
+struct hl_flow {
+    hl_tape *f;
+    int n, p;
+    double atol, rtol;
+    double ln_atol, ln_rtol;
+    double *coef; /* n * (p+1) Taylor coefficients of the current step */
+    double *zt;   /* n: state at an output time */
+    long nsteps;
+};
+
+int hl_flow_new(hl_flow **out, hl_tape *f, double atol, double rtol, hl_error *err)
+{
+    *out = NULL;
+    int n = hl_tape_ninputs(f);
+    if (n != hl_tape_noutputs(f) || n == 0)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                            "a flow needs a tape with as many outputs as inputs (%d inputs, %d outputs)",
+                            n, hl_tape_noutputs(f));
+    if (!(atol > 0) || !(rtol > 0) || !isfinite(atol) || !isfinite(rtol))
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                            "tolerances must be positive (atol %g, rtol %g)", atol, rtol);
+    hl_flow *fl = hl_xcalloc(1, sizeof *fl);
+    fl->f = f;
+    fl->n = n;
+    fl->atol = atol;
+    fl->rtol = rtol;
+    fl->ln_atol = log(atol);
+    fl->ln_rtol = log(rtol);
+    fl->p = hl_flow_order_for(log(fmin(atol, rtol)));
+    fl->coef = hl_xcalloc((size_t)n * (fl->p + 1), sizeof *fl->coef);
+    fl->zt = hl_xcalloc((size_t)n, sizeof *fl->zt);
+    *out = fl;
+    return HL_OK;
+}
+
+void hl_flow_free(hl_flow *fl)
+{
+    if (fl == NULL)
+        return;
+    free(fl->coef);
+    free(fl->zt);
+    free(fl);
+}
+
+int hl_flow_order(const hl_flow *fl) { return fl->p; }
+long hl_flow_nsteps(const hl_flow *fl) { return fl->nsteps; }
+
+/* Time as an unevaluated sum hi + lo (Knuth's two-sum). */
+static void time_add(double *hi, double *lo, double h)
+{
+    double s = *hi + h, bv = s - *hi;
+    double e = (*hi - (s - bv)) + (h - bv) + *lo;
+    *hi = s + e;
+    *lo = e - (*hi - s);
+}
+
+static void horner(double *z, const double *coef, int n, int p, double h)
+{
+    const int S = p + 1;
+    for (int i = 0; i < n; i++) {
+        const double *c = coef + (size_t)i * S;
+        double s = c[p];
+        for (int k = p - 1; k >= 0; k--)
+            s = s * h + c[k];
+        z[i] = s;
+    }
+}
+
+static int all_finite(const double *z, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(z[i]))
+            return 0;
+    return 1;
+}
+
+/* One step's coefficients at z, and its size (> 0, maybe +inf). */
+static int step_size(double *h, hl_flow *fl, const double *z, double t, hl_error *err)
+{
+    const int n = fl->n, p = fl->p, S = p + 1;
+    double *c = fl->coef;
+    for (int i = 0; i < n; i++)
+        c[(size_t)i * S] = z[i];
+    int st = hl_tape_taylor_ode_d(c, p, fl->f, err);
+    if (st != HL_OK)
+        return st;
+    double n0 = 0, n1 = 0, n2 = 0, sum = 0;
+    for (int i = 0; i < n; i++) {
+        const double *ci = c + (size_t)i * S;
+        double a0 = fabs(ci[0]), a1 = fabs(ci[p - 1]), a2 = fabs(ci[p]);
+        n0 = a0 > n0 ? a0 : n0;
+        n1 = a1 > n1 ? a1 : n1;
+        n2 = a2 > n2 ? a2 : n2;
+        sum += a1 + a2; /* the maxima drop NaN; a sum keeps it */
+    }
+    if (!isfinite(sum))
+        n1 = NAN;
+    double ln_eps = fl->rtol * n0 > fl->atol ? fl->ln_rtol + log(n0) : fl->ln_atol;
+    *h = hl_flow_step_for(ln_eps, n1, n2, p);
+    if (isnan(*h))
+        return hl_error_set(err, HL_EDOM, NULL, -1, 0,
+                            "the solution is not finite (Taylor coefficients overflow) at t = %.17g", t);
+    if (*h < DBL_MIN || *h <= 4 * DBL_EPSILON * fabs(t))
+        return hl_error_set(err, HL_ENOCONV, NULL, -1, 0, "step size underflow (h = %g) at t = %.17g",
+                            *h, t);
+    return HL_OK;
+}
+
+/* Integrate from (thi + tlo, z) to tend, calling fn at ts[0..n-1]. */
+static int drive(hl_flow *fl, double *thi, double *tlo, double *z, double tend, const double *ts,
+                 int nts, hl_flow_fn fn, void *arg, hl_error *err)
+{
+    const double dir = tend >= *thi ? 1 : -1;
+    int j = 0, st;
+    for (;;) {
+        for (; j < nts && dir * ((ts[j] - *thi) - *tlo) <= 0; j++)
+            if ((st = fn(ts[j], z, arg)) != 0)
+                return st;
+        double rem = dir * ((tend - *thi) - *tlo);
+        if (rem <= 0)
+            return HL_OK;
+        double h;
+        if ((st = step_size(&h, fl, z, *thi, err)) != HL_OK)
+            return st;
+        int last = h >= rem;
+        if (last)
+            h = rem;
+        for (double tau; j < nts && (tau = dir * ((ts[j] - *thi) - *tlo)) <= h; j++) {
+            horner(fl->zt, fl->coef, fl->n, fl->p, dir * tau);
+            if ((st = fn(ts[j], fl->zt, arg)) != 0)
+                return st;
+        }
+        horner(fl->zt, fl->coef, fl->n, fl->p, dir * h);
+        if (!all_finite(fl->zt, fl->n))
+            return hl_error_set(err, HL_EDOM, NULL, -1, 0, "the solution is not finite at t = %.17g",
+                                *thi + dir * h);
+        memcpy(z, fl->zt, (size_t)fl->n * sizeof *z);
+        fl->nsteps++;
+        if (last) {
+            *thi = tend;
+            *tlo = 0;
+        } else {
+            time_add(thi, tlo, dir * h);
+        }
+    }
+}
+
+int hl_flow_evolve(hl_flow *fl, double *t, double t1, double *z, hl_error *err)
+{
+    if (!isfinite(*t) || !isfinite(t1))
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "times must be finite");
+    double thi = *t, tlo = 0;
+    int st = drive(fl, &thi, &tlo, z, t1, NULL, 0, NULL, NULL, err);
+    *t = thi + tlo;
+    return st;
+}
+
+int hl_flow_run(hl_flow *fl, double t0, const double *z0, const double *ts, int n,
+                hl_flow_fn fn, void *arg, hl_error *err)
+{
+    if (n <= 0)
+        return HL_OK;
+    double tend = ts[n - 1], dir = tend >= t0 ? 1 : -1, prev = t0;
+    for (int j = 0; j < n; j++) {
+        if (!isfinite(ts[j]) || dir * (ts[j] - prev) < 0)
+            return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                                "output times must be finite and monotone from t0 (time %d is %g)",
+                                j, ts[j]);
+        prev = ts[j];
+    }
+    double *z = hl_xmalloc((size_t)fl->n * sizeof *z);
+    memcpy(z, z0, (size_t)fl->n * sizeof *z);
+    double thi = t0, tlo = 0;
+    int st = drive(fl, &thi, &tlo, z, tend, ts, n, fn, arg, err);
+    free(z);
+    return st;
+}
+
+typedef struct store {
+    double *out;
+    int n, i;
+} store;
+
+static int store_fn(double t, const double *z, void *arg)
+{
+    store *s = arg;
+    memcpy(s->out + (size_t)s->i++ * s->n, z, (size_t)s->n * sizeof *z);
+    return 0;
+}
+
+int hl_flow_eval_at(hl_flow *fl, double t0, const double *z0, const double *ts, int n,
+                    double *out, hl_error *err)
+{
+    store s = {out, fl->n, 0};
+    return hl_flow_run(fl, t0, z0, ts, n, store_fn, &s, err);
+}

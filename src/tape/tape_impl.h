@@ -1,0 +1,68 @@
+/* Internals of the tape layer shared by compile.c, eval.c and taylor*.c. */
+#ifndef HAMLIE_TAPE_IMPL_H
+#define HAMLIE_TAPE_IMPL_H
+
+#include <flint/fmpq.h>
+#include <arb.h>
+#include "hamlie/tape.h"
+
+/* A body instruction resolved against the Taylor register file: the
+ * pointers are computed once per layout, not once per coefficient. */
+typedef struct hl_tinstr {
+    int op;
+    double *d, *x;
+    const double *a, *b;
+} hl_tinstr;
+
+typedef struct hl_instr {
+    int op;   /* hl_op */
+    int d;    /* destination */
+    int a, b; /* operands (b: a constant register for the K ops; -1 if none) */
+    int x;    /* aux register (SINCOS .. ACOS), else -1 */
+} hl_instr;
+
+/* A constant leaf: a rational literal or pi. */
+typedef struct hl_leaf {
+    int reg;
+    int is_pi;
+    fmpq_t q;
+} hl_leaf;
+
+struct hl_tape {
+    int nin, nout, nregs;
+    int *outreg;            /* nout registers */
+    hl_instr *code;         /* the body: instructions depending on inputs */
+    int ncode;
+    hl_instr *pro;          /* the prologue: instructions on constants only */
+    int npro;
+    hl_leaf *leaf;
+    int nleaf;
+    unsigned char *isconst; /* nregs flags */
+
+    double *rd;             /* double registers; constants filled at compile */
+
+    arb_ptr ra;             /* Arb registers; constants valid at ra_prec */
+    slong ra_prec;          /* 0 = constants not computed yet */
+
+    double *td;             /* Taylor double: nregs * ts coefficients */
+    struct hl_tinstr *tcode; /* the body with operand pointers into td */
+    void *native_so;        /* hl_tape_native: the loaded object, its entry, */
+    void (*native_fn)(double *R); /* and the order it was made for */
+    int native_order;
+    double *tinv;           /* tinv[k] = 1/k for k = 1..order+1 (divisions are slow) */
+    int ts;                 /* its stride (order + 1), 0 = not laid out */
+    size_t tdcap;
+
+    arb_ptr ta;             /* Taylor Arb: nregs * tas coefficients */
+    int tas;
+    slong ta_prec;
+    size_t tacap;
+    arb_t tmp[4];           /* scratch for the Arb recurrences */
+};
+
+/* eval.c */
+void hl_tape_run_d(const hl_instr *code, int n, double *r);
+void hl_tape_run_arb(const hl_instr *code, int n, arb_ptr r, slong prec);
+void hl_tape_consts_arb(arb_ptr r, slong prec, const hl_tape *tape);
+
+#endif
