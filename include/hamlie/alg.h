@@ -57,6 +57,13 @@ int hl_alg_ctx_natoms(const hl_alg_ctx *ctx);
 /* The FLINT context, for code that works on num and den directly. */
 const fmpz_mpoly_ctx_struct *hl_alg_ctx_mpoly(const hl_alg_ctx *ctx);
 
+/* Print order: the series symbol (base symbol var, e.g. the step D; -1 for
+ * none).  hl_alg_to_expr then writes terms by ascending power of it, then by
+ * descending total degree in the others ("x + D*p", "1 + D^2"), and puts it
+ * first in each monomial ("D^2*x").  Without it: total degree descending. */
+void hl_alg_ctx_set_step(hl_alg_ctx *ctx, int var);
+int hl_alg_ctx_step(const hl_alg_ctx *ctx); /* -1 if none */
+
 /* Was a numeric (Arb) test used to decide a zero since the last reset? */
 int hl_alg_ctx_numeric_used(const hl_alg_ctx *ctx);
 void hl_alg_ctx_reset_numeric_used(hl_alg_ctx *ctx);
@@ -94,8 +101,12 @@ int hl_alg_pow_si(hl_alg *r, const hl_alg *a, long e, hl_alg_ctx *ctx, hl_error 
  * powers and roots; a^b with b not constant is exp(b*log(a)). */
 int hl_alg_from_expr(hl_alg *r, const hl_expr *e, hl_alg_ctx *ctx, hl_error *err);
 
-/* Write as an expression the way a person would: terms collected, the
- * denominator factored, sqrt(u)/u^2 shown as u^(-3/2), atoms as functions. */
+/* Write as an expression the way a person would (rules in print.c): terms
+ * collected and ordered (see hl_alg_ctx_set_step), a minus on the first
+ * factor ("-x*D", never "-(x*D)"), the denominator factored, the numerator
+ * split by square roots with sqrt(u)/u^2 shown as 1/u^(3/2), a common factor
+ * pulled out only when that is shorter, atoms as functions.  Printing only:
+ * hl_alg_from_expr of the result gives back a exactly. */
 const hl_expr *hl_alg_to_expr(const hl_alg *a, const hl_alg_ctx *ctx, hl_pool *pool);
 
 /* ---- calculus and structure ------------------------------------------- */

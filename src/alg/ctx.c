@@ -3,7 +3,8 @@
  * Monomial order: ORD_DEGLEX.  Terms are then stored by total degree
  * descending and, within a degree, in variable order (base symbols before
  * atoms), which is the order a person writes them in; the printer walks the
- * terms as stored and never sorts.  For the sizes hamlie meets, FLINT's
+ * terms as stored unless a series symbol is set (hl_alg_ctx_set_step: then it
+ * sorts by powers of that symbol first).  For the sizes hamlie meets, FLINT's
  * multiplication and gcd cost the same under LEX and DEGLEX. */
 #include <stdlib.h>
 #include <string.h>
@@ -21,6 +22,7 @@ hl_alg_ctx *hl_alg_ctx_new(int nbase, const char *const *names, int max_atoms)
     if (max_atoms <= 0)
         max_atoms = DEFAULT_MAX_ATOMS;
     ctx->nbase = nbase;
+    ctx->step = -1;
     ctx->max_atoms = max_atoms;
     ctx->names = hl_xcalloc((size_t)nbase + 1, sizeof *ctx->names);
     for (int i = 0; i < nbase; i++)
@@ -62,6 +64,12 @@ int hl_alg_ctx_natoms(const hl_alg_ctx *ctx) { return ctx->natoms; }
 const fmpz_mpoly_ctx_struct *hl_alg_ctx_mpoly(const hl_alg_ctx *ctx) { return ctx->mctx; }
 int hl_alg_ctx_numeric_used(const hl_alg_ctx *ctx) { return ctx->numeric_used; }
 void hl_alg_ctx_reset_numeric_used(hl_alg_ctx *ctx) { ctx->numeric_used = 0; }
+int hl_alg_ctx_step(const hl_alg_ctx *ctx) { return ctx->step; }
+
+void hl_alg_ctx_set_step(hl_alg_ctx *ctx, int var)
+{
+    ctx->step = (var >= 0 && var < ctx->nbase) ? var : -1;
+}
 
 const char *hl_alg_ctx_name(const hl_alg_ctx *ctx, int i)
 {

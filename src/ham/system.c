@@ -436,6 +436,7 @@ static int build_ctx(hl_system *sys, const namelist *syms)
         names[2 * sys->n + i] = sys->param[i];
     names[nb - 1] = "D";
     sys->ctx = hl_alg_ctx_new(nb, names, 0);
+    hl_alg_ctx_set_step(sys->ctx, nb - 1); /* print by powers of D */
     free(names);
     return sys->ctx != NULL ? HL_OK : HL_ENOMEM;
 }
