@@ -84,8 +84,10 @@ int hl_generator(hl_alg *xi, hl_alg *eta, hl_system *sys, hl_error *err);
 int hl_generator_apply(hl_alg *r, const hl_alg *phi, hl_system *sys, hl_error *err);
 
 /* Lie series.  terms[k] = g^k phi for k = 0..order (order+1 entries).
- * Refuses (HL_ELIMIT) an order above HL_LIE_MAX_ORDER, or a term grown past
- * HL_LIE_MAX_TERMS terms, saying at which order it stopped. */
+ * Refuses (HL_ELIMIT) an order above HL_LIE_MAX_ORDER, and a series whose
+ * terms together hold more than HL_LIE_MAX_TERMS polynomial terms (about
+ * 1.6 GB for Kepler, whose coefficients grow like factorials): once a few orders are known, their growth is extrapolated and a
+ * request that would not fit is refused at once, saying which order would. */
 #define HL_LIE_MAX_ORDER 200
 #define HL_LIE_MAX_TERMS 2000000L
 int hl_lie_terms(hl_alg *terms, const hl_alg *phi, int order, hl_system *sys, hl_error *err);
