@@ -1,0 +1,49 @@
+/* Internals shared by the files of src/series only. */
+#ifndef HAMLIE_SERIES_IMPL_H
+#define HAMLIE_SERIES_IMPL_H
+
+#include "hamlie/series.h"
+
+/* Structurally zero?  For skipping work only: hl_alg_is_zero may run a
+ * numeric test (and flag the context) where the canonical form does not
+ * decide, which a skipped product does not need. */
+static inline int series_trivially_zero(const hl_alg *a, const hl_alg_ctx *ctx)
+{
+    return fmpz_mpoly_is_zero(a->num, hl_alg_ctx_mpoly(ctx));
+}
+
+/* A table of symbol values for hl_series_eval_expr: every base symbol of the
+ * context bound to itself (a constant series), the step var_D (if >= 0) to
+ * the series D; names are borrowed. */
+typedef struct series_table {
+    int nsym, alloc;
+    const char **names;
+    hl_series *vals;
+} series_table;
+
+void series_table_init(series_table *t, int var_D, int n, hl_alg_ctx *ctx);
+void series_table_clear(series_table *t, const hl_alg_ctx *ctx);
+/* Bind name to v (a copy), replacing an earlier binding of the same name;
+ * returns its index in names/vals. */
+int series_table_bind(series_table *t, const char *name, const hl_series *v, const hl_alg_ctx *ctx);
+int series_table_eval(hl_series *out, const hl_expr *e, const series_table *t, int n,
+                      hl_alg_ctx *ctx, hl_error *err);
+
+/* Taylor mode compiled (taylor.c): the nodes of the expressions roots, in
+ * topological order, symbols resolved to indices into names.  A program is
+ * run coefficient by coefficient: step k computes the D^k coefficient of
+ * every node from inputs[i].c[k] and the coefficients below k; running step
+ * k again (after changing inputs' coefficient k) overwrites it, and step 0
+ * restarts the run. */
+typedef struct series_prog series_prog;
+
+int series_prog_compile(series_prog **out, int nroot, const hl_expr *const *roots, int nsym,
+                        const char *const *names, int n, hl_alg_ctx *ctx, hl_error *err);
+void series_prog_free(series_prog *p, const hl_alg_ctx *ctx); /* NULL is a no-op */
+int series_prog_step(series_prog *p, int k, const hl_series *inputs, hl_alg_ctx *ctx,
+                     hl_error *err);
+int series_prog_run(series_prog *p, int n, const hl_series *inputs, hl_alg_ctx *ctx,
+                    hl_error *err); /* steps 0..n-1 */
+const hl_series *series_prog_root(const series_prog *p, int i);
+
+#endif
