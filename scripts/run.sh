@@ -10,9 +10,12 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 cmake --build build -j"$(nproc 2>/dev/null || echo 2)" --target hamlie_cli >/dev/null
 hamlie=build/hamlie
 
+# Echo a command as a user would type it: quote only what the shell needs quoted.
 show() {
   printf '\n$ hamlie'
-  printf " '%s'" "$@" | sed "s/ '\(-[-A-Za-z]*\)'/ \1/g"
+  for a in "$@"; do
+    if [[ $a =~ ^[-A-Za-z0-9_.,:=/+]+$ ]]; then printf ' %s' "$a"; else printf " '%s'" "$a"; fi
+  done
   printf '\n'
   "$hamlie" "$@" || true   # exit 1 means "a checked property fails": part of the demo
 }
