@@ -1,0 +1,201 @@
+/* hamlie — one-step schemes: one definition, two readings.
+ *
+ * A scheme is written once, for any number N of degrees of freedom, as a
+ * ';'-separated list of VECTOR equations (the scheme language):
+ *
+ *   q, p        the current point (N components each)
+ *   Q, P        the next point (unknowns)
+ *   D           the step (a scalar)
+ *   k1 = ...    a name that is the whole left side of an equation and is not
+ *               one of the above is a stage: N more unknowns
+ *   Hq(a, b)    the gradient dH/dq at the point (a, b) (a vector)
+ *   Hp(a, b)    the gradient dH/dp at (a, b) (a vector)
+ *   H(a, b)     the Hamiltonian at (a, b) (a scalar)
+ *   dot(a, b)   sum_j a_j b_j (a scalar)
+ *   int(s, f)   the integral of f over s in [0, 1] (f scalar or vector)
+ *   sin(a) ...  the expression language's functions, elementwise
+ *   pi, numbers, the system's parameters (scalars; a stage's name hides a
+ *               parameter of the same name)
+ * Arithmetic is elementwise, a scalar combines with every component.
+ * Examples: "Q = q + D*Hp(q, p); P = p - D*Hq(q, p)" (explicit Euler),
+ * "(Q-q)/D = Hp((q+Q)/2, (p+P)/2); (P-p)/D = -Hq((q+Q)/2, (p+P)/2)".
+ *
+ * The reader is hamlie's own (src/scheme/read.c, on the expression
+ * language's tokenizer plus ','): the expression parser has no calls with
+ * two arguments, and the vector reading is done while parsing.
+ *
+ * Instantiated for a system (hl_scheme_new & co.), a scheme becomes an
+ * hl_scheme: m scalar unknowns with reserved names that no user symbol can
+ * take ("Q#1", "P#2", "k1#1": the component index is 1-based), m scalar
+ * equations lhs = rhs over the system's symbols, D and the unknowns, and
+ * the unknowns' values at D = 0 (Q, P: q, p; a stage: the right side of
+ * its defining equation at D = 0, in order; an error when that still
+ * involves an unknown, e.g. "k = k + D").  Stages are N-vectors (there
+ * are no scalar stages).  An integral int(s, f) stays a marked
+ * symbol "I#k" whose integrand int_body[k] is written in the symbol "s#";
+ * each reading replaces it by a quadrature:
+ *   series:  an interpolatory rule on n + 1 equally spaced rational nodes,
+ *            exact for polynomials of degree n in s.  The D^k coefficient of
+ *            an integrand that depends on s only through s*(Z - z), with
+ *            Z - z = O(D) (average vector field, Itoh-Abe), is a polynomial
+ *            of degree <= k in s, so the series to O(D^n) is exact.  For a
+ *            user's integrand this is assumed, not checked.
+ *   numeric: Gauss-Legendre.
+ * Both readings consume only this structure; a reading never re-parses.
+ *
+ * Lifetime: an hl_scheme borrows its system (expressions live in the
+ * system's pool); free the scheme before the system.
+ */
+#ifndef HAMLIE_SCHEME_H
+#define HAMLIE_SCHEME_H
+
+#include "hamlie/error.h"
+#include "hamlie/expr.h"
+#include "hamlie/alg.h"
+#include "hamlie/ham.h"
+#include "hamlie/series.h"
+#include "hamlie/tape.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- the instantiated scheme (read-only for callers) ------------------ */
+
+typedef struct hl_scheme {
+    hl_system *sys;          /* borrowed */
+    char *name;              /* "gauss2", "user", ... */
+    int N;                   /* degrees of freedom */
+    int m;                   /* number of unknowns = number of equations */
+    char **unknown;          /* reserved names, m */
+    char **display;          /* names for messages ("X", "PX", "k1[2]"), m */
+    const hl_expr **z0;      /* unknown's value at D = 0 (system symbols), m */
+    const hl_expr **lhs;     /* equation i: lhs[i] = rhs[i], m */
+    const hl_expr **rhs;
+    int *defines;            /* equation i's left side is unknown defines[i], or -1 */
+    int *expl;               /* equation i is explicit: defines[i] >= 0 and its
+                                right side uses only unknowns defined by
+                                equations before i */
+    int all_explicit;        /* every equation explicit: steps by evaluation */
+    int *iQ, *iP;            /* indices in unknown[] of Q_j and P_j, N each */
+    int nint;                /* integrals */
+    char **int_name;         /* "I#1", ... */
+    const hl_expr **int_body;/* integrand, in the symbol HL_SCHEME_S */
+} hl_scheme;
+
+#define HL_SCHEME_S "s#"
+
+void hl_scheme_free(hl_scheme *s); /* NULL is a no-op */
+
+/* ---- the catalog ------------------------------------------------------- */
+
+enum {
+    HL_SCHEME_SYMPLECTIC = 1 << 0,  /* a canonical map for every H */
+    HL_SCHEME_PRESERVES_H = 1 << 1, /* H(Q, P) = H(q, p) exactly */
+    HL_SCHEME_IMPLICIT = 1 << 2,    /* implicit for a general H */
+    HL_SCHEME_SEPARABLE = 1 << 3,   /* explicit only when H = T(p) + V(q) */
+    HL_SCHEME_OSCILLATOR = 1 << 4   /* only for H = (p^2 + q^2)/2, one dof */
+};
+
+#define HL_SCHEME_EXACT (-1)
+
+typedef struct hl_scheme_info {
+    const char *name;
+    const char *description;
+    int order;      /* theoretical order; for "lie" the default n;
+                       HL_SCHEME_EXACT for a scheme exact on its system */
+    unsigned flags;
+} hl_scheme_info;
+
+int hl_scheme_catalog_count(void);
+const hl_scheme_info *hl_scheme_catalog(int i);
+const hl_scheme_info *hl_scheme_lookup(const char *name); /* NULL if none */
+
+/* Instantiate catalog scheme `name` for sys.  param: the order of "lie"
+ * (0 = its default), ignored by the others.  HL_EINVAL for an unknown name
+ * (the message lists the catalog), for a system without H, and for an
+ * oscillator-only scheme on another system. */
+int hl_scheme_new(hl_scheme **out, const char *name, int param, hl_system *sys,
+                  hl_error *err);
+
+/* The language text of a catalog scheme that has one (NULL for the C
+ * generators: rk4, gauss*, lie, yoshida4, itoh-abe, gonzalez). */
+const char *hl_scheme_text(const char *name);
+
+/* ---- user schemes ------------------------------------------------------ */
+
+/* A definition in the scheme language (above), for sys. */
+int hl_scheme_from_text(hl_scheme **out, const char *def, hl_system *sys, hl_error *err);
+
+/* A map "X = ...; P = ..." or equations "(X-x)/D = (P+p)/2; ..." written
+ * with the system's own names: the next point is the variable's name in
+ * upper case (or first letter upper: Px) or followed by a prime (x'); "H"
+ * is the Hamiltonian.  A map must give each image once, as "image = f"; the
+ * right sides may use images given before (X = ...; P = p - D*X). */
+int hl_scheme_from_map(hl_scheme **out, const char *map, hl_system *sys, hl_error *err);
+int hl_scheme_from_equations(hl_scheme **out, const char *eqs, hl_system *sys,
+                             hl_error *err);
+
+/* ---- generators -------------------------------------------------------- */
+
+/* Runge-Kutta on z' = J grad H from a Butcher tableau with s stages:
+ * A[i*s + j] and b[i] are expressions in the expression language ("1/4",
+ * "1/4 - sqrt(3)/6").  Stage unknowns k_i (dq) and l_i (dp). */
+int hl_scheme_rk(hl_scheme **out, const char *name, int s, const char *const *A,
+                 const char *const *b, hl_system *sys, hl_error *err);
+
+/* The truncated Lie series Q = sum_{k<=n} D^k/k! g^k q (and P). */
+int hl_scheme_lie(hl_scheme **out, int n, hl_system *sys, hl_error *err);
+
+/* The composition psi_{c_r D} o ... o psi_{c_1 D} of instances of the
+ * language scheme `text` (c_i expressions: "1/(2 - 2^(1/3))"). */
+int hl_scheme_compose(hl_scheme **out, const char *name, const char *text, int r,
+                      const char *const *c, hl_system *sys, hl_error *err);
+
+/* ---- the symbolic reading ---------------------------------------------- */
+
+/* Z[0..N-1] = Q, Z[N..2N-1] = P as series in D to O(D^n) (Z initialised by
+ * the caller; they are overwritten).  Explicit schemes are evaluated in
+ * order (Taylor mode); others are solved order by order (hl_series_solve).
+ * Errors (HL_EINVAL): not the identity at D = 0, not determined at D = 0,
+ * and, when the system has H and n >= 2, not consistent: the D^1
+ * coefficient is not the generator (dH/dp, -dH/dq). */
+int hl_scheme_expand(hl_series *Z, const hl_scheme *s, int n, hl_error *err);
+
+/* ---- the numeric reading -------------------------------------------------- */
+
+/* A stepper: the scheme compiled to tapes (tape.h) for steps in double.
+ * Explicit schemes: the equations are inlined in order into one tape
+ * z, D -> (Q, P) (shared subexpressions computed once).  Others: Newton on
+ * all the equations F = lhs - rhs (simplified Newton: the Jacobian dF/dU,
+ * from hl_expr_diff compiled to its own tape, is evaluated and factored at
+ * the start and again only when convergence slows), starting from the unknowns' values at D = 0
+ * with (Q, P) predicted by explicit Euler.  Integrals: Gauss-Legendre with
+ * HL_SCHEME_GAUSS_NODES nodes.  An equation that divides by an expression
+ * in the unknowns is first put in exact canonical form (alg.h), which
+ * removes 0/0 such as the paper's (P^2 - p^2)/(P - p) at P = p.  Every
+ * parameter must have a value.  The stepper keeps no reference to the
+ * scheme (its tapes are self-contained); it borrows nothing. */
+#define HL_SCHEME_GAUSS_NODES 8
+#define HL_SCHEME_NEWTON_MAX 50
+
+typedef struct hl_scheme_stepper hl_scheme_stepper;
+
+int hl_scheme_stepper_new(hl_scheme_stepper **out, const hl_scheme *s, hl_error *err);
+void hl_scheme_stepper_free(hl_scheme_stepper *st); /* NULL is a no-op */
+
+/* One step: z[0..N-1] = q, z[N..2N-1] = p are replaced by (Q, P).  t is the
+ * time of z (for messages only); the stepper counts its steps.  HL_ENOCONV
+ * when Newton does not converge in HL_SCHEME_NEWTON_MAX iterations (the
+ * message names the step and the time), HL_EDOM when a value is not
+ * finite; z is left untouched on failure. */
+int hl_scheme_step(hl_scheme_stepper *st, double *z, double D, double t, hl_error *err);
+
+/* Newton iterations taken by the last step (0 for an explicit scheme). */
+int hl_scheme_stepper_iterations(const hl_scheme_stepper *st);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,49 @@
+/* Internals shared by the files of src/scheme only. */
+#ifndef HAMLIE_SCHEME_IMPL_H
+#define HAMLIE_SCHEME_IMPL_H
+
+#include "hamlie/scheme.h"
+
+/* A scheme under construction: unknowns, scalar equations, integrals. */
+typedef struct sb {
+    hl_scheme *s;
+    hl_system *sys;
+    hl_pool *pool;
+    int cap_u, cap_e, cap_i;
+    int neq;
+} sb;
+
+/* Starts with the 2N unknowns Q#j (index j) and P#j (index N + j). */
+void sb_init(sb *b, hl_system *sys, const char *name);
+/* Add an unknown; z0 NULL: derived from the equation that defines it. */
+int sb_unknown(sb *b, const char *reserved, const char *display, const hl_expr *z0);
+const hl_expr *sb_usym(sb *b, int u);
+int sb_find(const sb *b, const char *name); /* index of an unknown, or -1 */
+void sb_eq(sb *b, const hl_expr *lhs, const hl_expr *rhs, int defines);
+/* The symbol standing for int_0^1 body d(s#). */
+const hl_expr *sb_integral(sb *b, const hl_expr *body);
+/* Check counts, mark explicit equations, derive values at D = 0; on
+ * success *out owns the scheme, else it is freed. */
+int sb_finish(hl_scheme **out, sb *b, hl_error *err);
+void sb_abort(sb *b);
+
+/* Upper-case display name of the image of a phase variable: malloc'd. */
+char *scheme_upper(const char *v);
+
+/* The vector reader (read.c).  A frame says what q, p, Q, P, D mean, so a
+ * text can be instantiated as one part of a composition. */
+typedef struct scheme_frame {
+    const hl_expr *const *q, *const *p; /* N each: current point */
+    const int *Qu, *Pu;                 /* N each: unknown indices of the next point */
+    const hl_expr *D;                   /* the step */
+    const char *prefix;                 /* for stage names ("" or "c2.") */
+} scheme_frame;
+
+int scheme_read(sb *b, const char *text, const scheme_frame *f, hl_error *err);
+
+/* dH/dq_j, dH/dp_j of the system as expressions (NULL without H). */
+const hl_expr *scheme_dH(hl_system *sys, int j, int wrt_p);
+/* The system's point as symbols: v[j] = q_j, v[N + j] = p_j. */
+void scheme_point(const hl_expr **v, hl_system *sys);
+
+#endif

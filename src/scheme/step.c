@@ -1,0 +1,428 @@
+/* The numeric reading: one step in double, by tapes. */
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/buf.h"
+#include "expr/memo.h"
+#include "scheme/scheme_impl.h"
+
+struct hl_scheme_stepper {
+    int N, m, nin;
+    int all_explicit;
+    int iters;
+    long steps;
+    hl_tape *tape;  /* explicit: z, D -> Z.  Else z, D, U -> F */
+    hl_tape *jac;   /* z, D, U -> dF/dU (row-major) */
+    hl_tape *start; /* z, D -> the Newton starting point U0 */
+    double *in, *out, *U, *A, *b;
+    int *iQ, *iP, *piv;
+    double last_ratio; /* last correction / the one before (Newton) */
+};
+
+void hl_scheme_stepper_free(hl_scheme_stepper *st)
+{
+    if (st == NULL)
+        return;
+    hl_tape_free(st->tape);
+    hl_tape_free(st->jac);
+    hl_tape_free(st->start);
+    free(st->in), free(st->out), free(st->U), free(st->A), free(st->b);
+    free(st->iQ), free(st->iP), free(st->piv);
+    free(st);
+}
+
+int hl_scheme_stepper_iterations(const hl_scheme_stepper *st) { return st->iters; }
+
+/* x exactly, as a rational (a double is a dyadic rational). */
+static const hl_expr *num_d(hl_pool *pool, double x)
+{
+    int e;
+    double f = frexp(x, &e);
+    fmpq_t r;
+    fmpq_init(r);
+    fmpz_set_d(fmpq_numref(r), ldexp(f, 53));
+    e -= 53;
+    if (e >= 0)
+        fmpz_mul_2exp(fmpq_numref(r), fmpq_numref(r), (ulong)e);
+    else
+        fmpz_mul_2exp(fmpq_denref(r), fmpq_denref(r), (ulong)(-e));
+    fmpq_canonicalise(r);
+    const hl_expr *v = hl_num_fmpq(pool, r);
+    fmpq_clear(r);
+    return v;
+}
+
+/* Gauss-Legendre nodes and weights on [0, 1] (Newton on P_n, the usual
+ * recurrence). */
+static void gauss_legendre(double *s, double *w, int n)
+{
+    for (int i = 0; i < (n + 1) / 2; i++) {
+        double x = cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 1;
+        for (int it = 0; it < 100; it++) {
+            double p0 = 1, p1 = x;
+            for (int k = 2; k <= n; k++) {
+                double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
+                p0 = p1, p1 = p2;
+            }
+            double pn = n == 1 ? x : p1, pm = n == 1 ? 1 : p0;
+            dp = n * (x * pn - pm) / (x * x - 1);
+            double dx = pn / dp;
+            x -= dx;
+            if (fabs(dx) < 1e-17)
+                break;
+        }
+        s[i] = (1 - x) / 2;
+        s[n - 1 - i] = (1 + x) / 2;
+        w[i] = w[n - 1 - i] = 1 / ((1 - x * x) * dp * dp);
+    }
+}
+
+/* The equations with the integrals replaced by the Gauss-Legendre sums. */
+static void quadrature(const hl_expr **lhs, const hl_expr **rhs, const hl_scheme *s,
+                       hl_pool *pool)
+{
+    for (int i = 0; i < s->m; i++)
+        lhs[i] = s->lhs[i], rhs[i] = s->rhs[i];
+    if (s->nint == 0)
+        return;
+    int n = HL_SCHEME_GAUSS_NODES;
+    double sn[HL_SCHEME_GAUSS_NODES], wn[HL_SCHEME_GAUSS_NODES];
+    gauss_legendre(sn, wn, n);
+    const hl_expr **val = hl_xmalloc((size_t)s->nint * sizeof *val);
+    const char *sv = HL_SCHEME_S;
+    for (int t = 0; t < s->nint; t++) {
+        const hl_expr *sum = NULL;
+        for (int i = 0; i < n; i++) {
+            const hl_expr *node = num_d(pool, sn[i]);
+            const hl_expr *f = hl_mul(pool, num_d(pool, wn[i]),
+                                      hl_expr_subst(pool, s->int_body[t], 1, &sv, &node));
+            sum = sum ? hl_add(pool, sum, f) : f;
+        }
+        val[t] = sum;
+    }
+    for (int i = 0; i < s->m; i++) {
+        lhs[i] = hl_expr_subst(pool, lhs[i], s->nint, (const char *const *)s->int_name, val);
+        rhs[i] = hl_expr_subst(pool, rhs[i], s->nint, (const char *const *)s->int_name, val);
+    }
+    free(val);
+}
+
+/* Explicit: inline the equations in order; outputs Q, P. */
+static int compile_explicit(hl_scheme_stepper *st, const hl_scheme *s, const hl_expr **rhs,
+                            const char **inputs, hl_pool *pool, hl_error *err)
+{
+    const hl_expr **val = hl_xcalloc((size_t)s->m, sizeof *val);
+    const char **names = hl_xmalloc((size_t)s->m * sizeof *names);
+    const hl_expr **vals = hl_xmalloc((size_t)s->m * sizeof *vals);
+    for (int i = 0; i < s->m; i++) {
+        int k = 0;
+        for (int u = 0; u < s->m; u++)
+            if (val[u] != NULL) {
+                names[k] = s->unknown[u];
+                vals[k++] = val[u];
+            }
+        val[s->defines[i]] = hl_expr_subst(pool, rhs[i], k, names, vals);
+    }
+    const hl_expr **outs = hl_xmalloc((size_t)(2 * s->N) * sizeof *outs);
+    for (int j = 0; j < s->N; j++) {
+        outs[j] = val[s->iQ[j]];
+        outs[s->N + j] = val[s->iP[j]];
+    }
+    int rc = hl_tape_new(&st->tape, outs, 2 * s->N, inputs, 2 * s->N + 1, err);
+    free(outs), free(val), free(names), free(vals);
+    return rc;
+}
+
+static int has_unknown(const hl_expr *e, const hl_scheme *s)
+{
+    for (int u = 0; u < s->m; u++)
+        if (hl_expr_has_symbol(e, s->unknown[u]))
+            return 1;
+    return 0;
+}
+
+/* Does e divide by something that depends on an unknown?  ((P^2 - p^2)/(P - p)
+ * is 0/0 at P = p, and loses digits near it.) */
+static int divides_by_unknown(const hl_expr *e, const hl_scheme *s, hl_memo *seen)
+{
+    hl_memo_val *v = hl_memo_get(seen, e);
+    if (v)
+        return v->i;
+    int r = 0;
+    switch (e->kind) {
+    case HL_DIV:
+        r = has_unknown(e->b, s) || divides_by_unknown(e->a, s, seen) ||
+            divides_by_unknown(e->b, s, seen);
+        break;
+    case HL_POW:
+        r = (e->b->kind != HL_NUM || fmpq_sgn(e->b->num) < 0) && has_unknown(e->a, s);
+        r = r || divides_by_unknown(e->a, s, seen) || divides_by_unknown(e->b, s, seen);
+        break;
+    case HL_ADD:
+    case HL_SUB:
+    case HL_MUL:
+        r = divides_by_unknown(e->a, s, seen) || divides_by_unknown(e->b, s, seen);
+        break;
+    case HL_NEG:
+    case HL_FUN:
+        r = divides_by_unknown(e->a, s, seen);
+        break;
+    default:
+        break;
+    }
+    hl_memo_put(seen, e)->i = r;
+    return r;
+}
+
+/* Equations that divide by an expression in the unknowns are replaced by
+ * their exact canonical form (alg.h), which cancels common factors: the
+ * paper's (P^2 - p^2)/(2(P - p)) becomes (P + p)/2, regular where P = p.
+ * The others are kept as written (expanding them would only cost). */
+static void simplify(const hl_expr **F, const hl_scheme *s, hl_pool *pool)
+{
+    hl_alg_ctx *ctx = hl_system_ctx(s->sys);
+    int nb = hl_alg_ctx_nbase(ctx);
+    hl_alg_ctx *aux = NULL;
+    hl_alg a;
+    hl_memo seen;
+    hl_memo_init(&seen);
+    for (int i = 0; i < s->m; i++) {
+        if (!divides_by_unknown(F[i], s, &seen))
+            continue;
+        if (aux == NULL) {
+            const char **names = hl_xmalloc((size_t)(nb + s->m) * sizeof *names);
+            for (int k = 0; k < nb; k++)
+                names[k] = hl_alg_ctx_name(ctx, k);
+            for (int u = 0; u < s->m; u++)
+                names[nb + u] = s->unknown[u];
+            aux = hl_alg_ctx_new(nb + s->m, names, 64);
+            free(names);
+            hl_alg_init(&a, aux);
+        }
+        if (hl_alg_from_expr(&a, F[i], aux, NULL) == HL_OK)
+            F[i] = hl_alg_to_expr(&a, aux, pool);
+    }
+    if (aux) {
+        hl_alg_clear(&a, aux);
+        hl_alg_ctx_free(aux);
+    }
+    hl_memo_clear(&seen);
+}
+
+/* Implicit: F = lhs - rhs and its Jacobian in the unknowns; and the start. */
+static int compile_newton(hl_scheme_stepper *st, const hl_scheme *s, const hl_expr **lhs,
+                          const hl_expr **rhs, const char **inputs, hl_pool *pool,
+                          hl_error *err)
+{
+    int m = s->m, N = s->N;
+    const hl_expr **outs = hl_xmalloc((size_t)(m + m * m) * sizeof *outs);
+    for (int i = 0; i < m; i++)
+        outs[i] = hl_sub(pool, lhs[i], rhs[i]);
+    simplify(outs, s, pool);
+    for (int i = 0; i < m; i++) {
+        for (int u = 0; u < m; u++)
+            outs[m + i * m + u] = hl_expr_diff(pool, outs[i], s->unknown[u]);
+    }
+    int rc = hl_tape_new(&st->tape, outs, m, inputs, 2 * N + 1 + m, err);
+    if (rc == HL_OK)
+        rc = hl_tape_new(&st->jac, outs + m, m * m, inputs, 2 * N + 1 + m, err);
+    /* the start: values at D = 0, the next point by explicit Euler */
+    const hl_expr *D = hl_sym(pool, "D");
+    for (int u = 0; u < m && rc == HL_OK; u++)
+        outs[u] = s->z0[u];
+    for (int j = 0; j < N && rc == HL_OK && hl_system_has_H(s->sys); j++) {
+        outs[s->iQ[j]] = hl_add(pool, s->z0[s->iQ[j]], hl_mul(pool, D, scheme_dH(s->sys, j, 1)));
+        outs[s->iP[j]] = hl_sub(pool, s->z0[s->iP[j]], hl_mul(pool, D, scheme_dH(s->sys, j, 0)));
+    }
+    if (rc == HL_OK)
+        rc = hl_tape_new(&st->start, outs, m, inputs, 2 * N + 1, err);
+    free(outs);
+    return rc;
+}
+
+int hl_scheme_stepper_new(hl_scheme_stepper **out, const hl_scheme *s, hl_error *err)
+{
+    *out = NULL;
+    hl_pool *pool = hl_system_pool(s->sys);
+    int N = s->N, m = s->m;
+    hl_scheme_stepper *st = hl_xcalloc(1, sizeof *st);
+    st->N = N, st->m = m, st->all_explicit = s->all_explicit;
+    st->nin = 2 * N + 1 + m;
+    st->iQ = hl_xmalloc((size_t)N * sizeof *st->iQ);
+    st->iP = hl_xmalloc((size_t)N * sizeof *st->iP);
+    memcpy(st->iQ, s->iQ, (size_t)N * sizeof *st->iQ);
+    memcpy(st->iP, s->iP, (size_t)N * sizeof *st->iP);
+    const char **inputs = hl_xmalloc((size_t)st->nin * sizeof *inputs);
+    for (int j = 0; j < N; j++) {
+        inputs[j] = hl_system_coord(s->sys, j);
+        inputs[N + j] = hl_system_momentum(s->sys, j);
+    }
+    inputs[2 * N] = "D";
+    for (int u = 0; u < m; u++)
+        inputs[2 * N + 1 + u] = s->unknown[u];
+    const hl_expr **lhs = hl_xmalloc((size_t)m * sizeof *lhs);
+    const hl_expr **rhs = hl_xmalloc((size_t)m * sizeof *rhs);
+    quadrature(lhs, rhs, s, pool);
+    int rc = s->all_explicit ? compile_explicit(st, s, rhs, inputs, pool, err)
+                             : compile_newton(st, s, lhs, rhs, inputs, pool, err);
+    free(inputs), free(lhs), free(rhs);
+    if (rc != HL_OK) {
+        hl_error_prefix(err, "compiling the scheme '%s'", s->name);
+        hl_scheme_stepper_free(st);
+        return rc;
+    }
+    st->in = hl_xmalloc((size_t)st->nin * sizeof *st->in);
+    st->out = hl_xmalloc((size_t)(m + m * m + 2 * N) * sizeof *st->out);
+    st->U = hl_xmalloc((size_t)m * sizeof *st->U);
+    st->A = hl_xmalloc((size_t)(m * m + 1) * sizeof *st->A);
+    st->b = hl_xmalloc((size_t)(m + 1) * sizeof *st->b);
+    st->piv = hl_xmalloc((size_t)(m + 1) * sizeof *st->piv);
+    *out = st;
+    return HL_OK;
+}
+
+/* A = LU in place with partial pivoting (piv: the row swaps); 0 if
+ * singular. */
+static int lu_factor(double *A, int *piv, int m)
+{
+    for (int c = 0; c < m; c++) {
+        int r = c;
+        for (int i = c + 1; i < m; i++)
+            if (fabs(A[i * m + c]) > fabs(A[r * m + c]))
+                r = i;
+        piv[c] = r;
+        if (!(fabs(A[r * m + c]) > 0))
+            return 0;
+        if (r != c)
+            for (int j = 0; j < m; j++) {
+                double t = A[r * m + j];
+                A[r * m + j] = A[c * m + j], A[c * m + j] = t;
+            }
+        for (int i = c + 1; i < m; i++) {
+            double f = A[i * m + c] /= A[c * m + c];
+            if (f != 0)
+                for (int j = c + 1; j < m; j++)
+                    A[i * m + j] -= f * A[c * m + j];
+        }
+    }
+    return 1;
+}
+
+/* b = A^{-1} b with the factors of lu_factor. */
+static void lu_apply(const double *A, const int *piv, double *b, int m)
+{
+    for (int c = 0; c < m; c++) {
+        if (piv[c] != c) {
+            double t = b[piv[c]];
+            b[piv[c]] = b[c], b[c] = t;
+        }
+        for (int i = c + 1; i < m; i++)
+            b[i] -= A[i * m + c] * b[c];
+    }
+    for (int i = m - 1; i >= 0; i--) {
+        double s = b[i];
+        for (int j = i + 1; j < m; j++)
+            s -= A[i * m + j] * b[j];
+        b[i] = s / A[i * m + i];
+    }
+}
+
+static int all_finite(const double *x, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(x[i]))
+            return 0;
+    return 1;
+}
+
+/* Simplified Newton: the Jacobian is evaluated and factored at the start
+ * and again only when the corrections stop shrinking fast (ratio > 1/4). */
+static int newton(hl_scheme_stepper *st, double D, double t, hl_error *err)
+{
+    int m = st->m, N = st->N;
+    double *in = st->in, *U = st->U, *A = st->A, *b = st->b, *out = st->out;
+    hl_tape_eval_d(U, in, st->start);
+    if (!all_finite(U, m))
+        return hl_error_set(err, HL_EDOM, NULL, -1, 0,
+                            "step %ld (t = %.17g, D = %g): the starting point is not finite",
+                            st->steps + 1, t, D);
+    double last = INFINITY;
+    int fresh = 0; /* the factored Jacobian is at the current iterate */
+    for (st->iters = 1; st->iters <= HL_SCHEME_NEWTON_MAX; st->iters++) {
+        memcpy(in + 2 * N + 1, U, (size_t)m * sizeof *U);
+        if (st->iters == 1 || (!fresh && last < INFINITY && st->last_ratio > 0.25)) {
+            hl_tape_eval_d(A, in, st->jac);
+            if (!all_finite(A, m * m))
+                break;
+            if (!lu_factor(A, st->piv, m))
+                return hl_error_set(err, HL_ENOCONV, NULL, -1, 0,
+                                    "step %ld (t = %.17g, D = %g): the Jacobian of the "
+                                    "scheme's equations is singular (Newton iteration %d)",
+                                    st->steps + 1, t, D, st->iters);
+            fresh = 1;
+        } else
+            fresh = 0;
+        hl_tape_eval_d(out, in, st->tape);
+        if (!all_finite(out, m))
+            break;
+        for (int i = 0; i < m; i++)
+            b[i] = -out[i];
+        lu_apply(A, st->piv, b, m);
+        double dn = 0, un = 1;
+        for (int i = 0; i < m; i++) {
+            U[i] += b[i];
+            dn = fmax(dn, fabs(b[i]));
+            un = fmax(un, fabs(U[i]));
+        }
+        if (!all_finite(U, m))
+            break;
+        double theta = last < INFINITY && last > 0 ? dn / last : 0;
+        st->last_ratio = theta;
+        /* converged: the correction is at rounding level; or the error left,
+         * estimated from the contraction theta, is; or the corrections are
+         * tiny and no longer shrink (rounding in F itself: the Gonzalez
+         * remainder R is a difference of O(1) terms that is O(D^3)) */
+        double tol = 4 * DBL_EPSILON * un;
+        if (dn <= tol || (theta > 0 && theta < 1 && dn * theta / (1 - theta) <= tol) ||
+            (dn <= 1e-12 * un && theta >= 0.5))
+            return HL_OK;
+        last = dn;
+    }
+    if (st->iters > HL_SCHEME_NEWTON_MAX)
+        return hl_error_set(err, HL_ENOCONV, NULL, -1, 0,
+                            "step %ld (t = %.17g, D = %g): Newton did not converge in %d "
+                            "iterations (last correction %.3g)",
+                            st->steps + 1, t, D, HL_SCHEME_NEWTON_MAX, last);
+    return hl_error_set(err, HL_EDOM, NULL, -1, 0,
+                        "step %ld (t = %.17g, D = %g): Newton met a value that is not finite "
+                        "(iteration %d)",
+                        st->steps + 1, t, D, st->iters);
+}
+
+int hl_scheme_step(hl_scheme_stepper *st, double *z, double D, double t, hl_error *err)
+{
+    int N = st->N;
+    memcpy(st->in, z, (size_t)(2 * N) * sizeof *z);
+    st->in[2 * N] = D;
+    st->iters = 0;
+    if (st->all_explicit) {
+        hl_tape_eval_d(st->out, st->in, st->tape);
+        if (!all_finite(st->out, 2 * N))
+            return hl_error_set(err, HL_EDOM, NULL, -1, 0,
+                                "step %ld (t = %.17g, D = %g): the next point is not finite",
+                                st->steps + 1, t, D);
+        memcpy(z, st->out, (size_t)(2 * N) * sizeof *z);
+    } else {
+        int rc = newton(st, D, t, err);
+        if (rc != HL_OK)
+            return rc;
+        for (int j = 0; j < N; j++) {
+            z[j] = st->U[st->iQ[j]];
+            z[N + j] = st->U[st->iP[j]];
+        }
+    }
+    st->steps++;
+    return HL_OK;
+}
