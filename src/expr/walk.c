@@ -4,6 +4,9 @@
 #include <math.h>
 #include <string.h>
 
+#include <flint/fmpq.h>
+#include <mpfr.h>
+
 #include "expr/memo.h"
 #include "expr/prec.h"
 
@@ -146,6 +149,19 @@ static double apply_fun(hl_fun f, double x)
     }
 }
 
+
+/* The double nearest to a rational.  FLINT 2.9's fmpq_get_d divides two
+ * rounded doubles (1.3 -> 1.2999999999999998); MPFR rounds once, exactly. */
+static double rational_to_double(const fmpq_t x)
+{
+    mpfr_t m;
+    mpfr_init2(m, 53);
+    fmpq_get_mpfr(m, x, MPFR_RNDN);
+    double d = mpfr_get_d(m, MPFR_RNDN);
+    mpfr_clear(m);
+    return d;
+}
+
 static int eval(eval_walk *w, const hl_expr *e, double *out)
 {
     hl_memo_val *v = hl_memo_get(&w->done, e);
@@ -160,7 +176,7 @@ static int eval(eval_walk *w, const hl_expr *e, double *out)
     if (e->b && (st = eval(w, e->b, &b)))
         return st;
     switch (e->kind) {
-    case HL_NUM: r = fmpq_get_d(e->num); break;
+    case HL_NUM: r = rational_to_double(e->num); break;
     case HL_PI: r = 3.14159265358979323846; break;
     case HL_SYM:
         for (int i = 0;; i++) {

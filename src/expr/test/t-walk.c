@@ -97,12 +97,29 @@ static void check_eval(hl_pool *pool)
     CHECK(hl_expr_eval_d(&r, t, 2, names, w, &err) == HL_OK && r == want);
 }
 
+/* A decimal literal evaluates to the double nearest to it, as strtod reads
+ * it: rounding once, not dividing two rounded integers. */
+static void check_literals_round_once(hl_pool *pool)
+{
+    static const char *const lits[] = {"1.3", "0.1", "0.7", "2.675", "1e-7", "123456.789",
+                                       "0.3333333333333333333", "1.7320508075688772"};
+    hl_error err;
+    for (size_t i = 0; i < sizeof lits / sizeof *lits; i++) {
+        const hl_expr *e = NULL;
+        double r = 0;
+        CHECK(hl_parse(&e, pool, lits[i], &err) == HL_OK);
+        CHECK(hl_expr_eval_d(&r, e, 0, NULL, NULL, &err) == HL_OK);
+        CHECK_MSG(r == strtod(lits[i], NULL), "%s evaluates to %.17g", lits[i], r);
+    }
+}
+
 int main(void)
 {
     hl_pool *pool = hl_pool_new();
     check_symbols(pool);
     check_subst(pool);
     check_eval(pool);
+    check_literals_round_once(pool);
     hl_pool_free(pool);
     return HL_TEST_END();
 }
