@@ -9,6 +9,7 @@ packages=(
   libplplot-dev plplot-driver-cairo                     # figures (PNG, SVG, PDF)
   python3 python3-sympy                                 # the peer in bench/ (not needed to build)
   libgsl-dev                                            # the peer integrator in bench/
+  libgccjit-12-dev                                      # optional: tapes compiled to machine code (hl_tape_jit)
 )
 
 missing=()

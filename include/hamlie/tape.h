@@ -141,19 +141,63 @@ int hl_tape_taylor_ode_d(double *z, int order, hl_tape *tape, hl_error *err);
 int hl_tape_taylor_ode_arb(arb_ptr z, int order, slong prec, hl_tape *tape, hl_error *err);
 
 /* ---- native code (opt-in) ------------------------------------------------
- * Compile the Taylor-ODE recursion at this order to machine code: the C
- * source is generated (straight-line, every sum written out), compiled with
- * the system C compiler ($HL_CC, else "cc") into a temporary shared object
- * and loaded; hl_tape_taylor_ode_d at this order then runs it instead of the
- * interpreter, with the same results up to the order of additions.  Costs
- * one compiler run (tenths of a second to seconds, growing with tape size
- * times order squared): for long runs.  HL_EUNSUP if no compiler runs or
- * dynamic loading fails (the interpreter keeps working); HL_EIO if the
- * temporary files cannot be written; HL_ELIMIT for a source that would be
- * too large (instructions * order^2 / 2 > 4e6 terms).  The code is built
- * with -march=native: it is made on and for the machine that runs it. */
+ * Compile the Taylor-ODE recursion at this order to machine code: one
+ * straight-line function (every sum written out, every register index a
+ * constant); hl_tape_taylor_ode_d at this order then runs it instead of the
+ * interpreter, with the same results up to the order of additions.  Built
+ * in process by libgccjit where hamlie has it (no files), else, or when
+ * $HL_CC names a compiler, as C source compiled by the system C compiler
+ * ($HL_CC, else "cc", with -march=native: made on and for the machine that
+ * runs it) into a temporary shared object and loaded.  Both backends build
+ * the same sums in the same order.  Costs one compilation (30-300 ms for
+ * the tapes of bench/taylor_flow.c at order 19, growing with tape size
+ * times order squared), for a run about twice as fast: it pays for runs of
+ * hundreds of thousands of steps, not for short ones.  HL_EUNSUP if neither
+ * backend works (the interpreter keeps working); HL_EIO if the temporary
+ * files cannot be written; HL_ELIMIT for a program that would be too large
+ * (instructions * order^2 / 2 > 4e6 terms). */
 int hl_tape_native(hl_tape *tape, int order, hl_error *err);
 void hl_tape_native_clear(hl_tape *tape); /* back to the interpreter */
+
+/* ---- machine code for point evaluation (opt-in) ---------------------------
+ * Compile the tape's double evaluation to machine code with libgccjit (at
+ * -O2, in this process, no files): one function, straight-line, constants
+ * as immediates; and for a tape with 1 <= nout <= nin also the loop of
+ * hl_tape_iterate.  From then on hl_tape_eval_d runs the machine code
+ * instead of the interpreter (one branch; callers change nothing) with
+ * bitwise the same results: the same IEEE operations in the same order,
+ * the same libm functions, no contraction into FMA.  Evaluation gets 4-7x
+ * faster; compiling costs about 25 ms + 0.1 ms per instruction (bench/
+ * tape_jit.c), so it pays only for long runs: see hl_tape_jit_breakeven.
+ * Calling it again recompiles.  HL_EUNSUP if hamlie was built without
+ * libgccjit or libgccjit fails (the tape keeps what it had; the
+ * interpreter keeps working).  $HL_JIT_FLAGS adds compiler options
+ * (space-separated), e.g. "-O3" or "-march=x86-64-v3" ("native" is not
+ * understood by libgccjit); options may change the last bits, and an
+ * option libgccjit rejects makes it print to stderr and fail.
+ * hl_tape_eval_arb and Taylor mode are not affected. */
+int hl_tape_jit(hl_tape *tape, hl_error *err);
+void hl_tape_jit_clear(hl_tape *tape);          /* back to the interpreter */
+int hl_tape_jit_active(const hl_tape *tape);    /* 1 if eval_d runs machine code */
+int hl_tape_jit_available(void);                /* 1 if built with libgccjit */
+
+/* The policy: the number of evaluations beyond which hl_tape_jit pays for
+ * its compilation, estimated from the tape's length with this machine's
+ * figures (compile 25 ms + 0.1 ms per instruction; each instruction saves
+ * about 2.4 ns per evaluation): about 1e7 / instructions + 4e4, e.g. 370k
+ * for a 30-instruction Störmer–Verlet step.  Callers compile when a run
+ * will evaluate the tape more often than this (LONG_MAX if the tape has no
+ * instructions or hamlie has no libgccjit). */
+long hl_tape_jit_breakeven(const hl_tape *tape);
+
+/* Iterate the tape as a map: n times, in[0..nout-1] = f(in), the inputs
+ * from nout on held fixed (a step size, parameters); needs 1 <= nout <= nin.
+ * Stops before the first step whose outputs are not all finite and returns
+ * the number of steps done (in holds the last state kept); -1 if the tape
+ * is not of that shape.  After hl_tape_jit the whole loop is machine code
+ * (the state stays in registers, no call per step: a fixed-step run at the
+ * speed of hand-written C); else the interpreter, with the same results. */
+long hl_tape_iterate(double *in, long n, hl_tape *tape);
 
 #ifdef __cplusplus
 }

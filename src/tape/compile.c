@@ -645,6 +645,7 @@ void hl_tape_free(hl_tape *t)
     free(t->isconst);
     free(t->rd);
     hl_tape_native_clear(t);
+    hl_tape_jit_clear(t);
     free(t->td);
     free(t->tcode);
     free(t->tinv);

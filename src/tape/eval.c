@@ -91,6 +91,10 @@ void hl_tape_consts_arb(arb_ptr r, slong prec, const hl_tape *t)
 
 void hl_tape_eval_d(double *out, const double *in, hl_tape *t)
 {
+    if (t->jit_fn != NULL) { /* hl_tape_jit: the same program as machine code */
+        t->jit_fn(in, out);
+        return;
+    }
     double *r = t->rd;
     if (t->nin > 0)
         memcpy(r, in, (size_t)t->nin * sizeof *r);

@@ -13,7 +13,12 @@
  *
  * This costs a compiler run (a fraction of a second for small tapes): worth
  * it for long runs, not for short ones.  Where no compiler runs, the caller
- * gets HL_EUNSUP and the interpreter keeps working. */
+ * gets HL_EUNSUP and the interpreter keeps working.
+ *
+ * Where hamlie has libgccjit, the same program is built in process instead
+ * (jit.c, hl_tape_jit_taylor: the same balanced sums as trees), unless
+ * $HL_CC asks for a compiler by name; this file's C printer is then the
+ * fallback. */
 #define _GNU_SOURCE
 #include <dlfcn.h>
 #include <fcntl.h>
@@ -310,8 +315,20 @@ int hl_tape_native(hl_tape *t, int order, hl_error *err)
                             "tape too large for native code at order %d (%d instructions)", order,
                             t->ncode);
     const char *cc = getenv("HL_CC");
-    if (cc == NULL || *cc == '\0')
+    /* libgccjit when there is one and no compiler was asked for by name:
+     * the same program, built in process (no files, no process) */
+    if (cc == NULL || *cc == '\0') {
+        void *res = NULL;
+        void (*jfn)(double *) = NULL;
+        if (hl_tape_jit_taylor(&res, &jfn, t, order, err) == HL_OK) {
+            hl_tape_native_clear(t);
+            t->native_jit = res;
+            t->native_fn = jfn;
+            t->native_order = order;
+            return HL_OK;
+        }
         cc = "cc";
+    }
     const char *tmp = getenv("TMPDIR");
     hl_buf path;
     hl_buf_init(&path);
@@ -351,8 +368,7 @@ int hl_tape_native(hl_tape *t, int order, hl_error *err)
     free(so);
     if (status != HL_OK)
         return status;
-    if (t->native_so)
-        dlclose(t->native_so);
+    hl_tape_native_clear(t);
     t->native_so = h;
     t->native_fn = fn;
     t->native_order = order;
@@ -363,6 +379,8 @@ void hl_tape_native_clear(hl_tape *t)
 {
     if (t->native_so)
         dlclose(t->native_so);
+    hl_tape_jit_release(t->native_jit);
+    t->native_jit = NULL;
     t->native_so = NULL;
     t->native_fn = NULL;
     t->native_order = 0;

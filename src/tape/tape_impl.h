@@ -49,6 +49,10 @@ struct hl_tape {
     void *native_so;        /* hl_tape_native: the loaded object, its entry, */
     void (*native_fn)(double *R); /* and the order it was made for */
     int native_order;
+    void *jit_result;       /* hl_tape_jit: the compiled evaluation (a gcc_jit_result) */
+    void (*jit_fn)(const double *in, double *out); /* and its entry; eval_d calls it */
+    long (*jit_iter)(double *z, long n); /* hl_tape_iterate's loop, if nout <= nin */
+    void *native_jit;       /* hl_tape_native through libgccjit: the gcc_jit_result */
     double *tinv;           /* tinv[k] = 1/k for k = 1..order+1 (divisions are slow) */
     int ts;                 /* its stride (order + 1), 0 = not laid out */
     size_t tdcap;
@@ -64,5 +68,11 @@ struct hl_tape {
 void hl_tape_run_d(const hl_instr *code, int n, double *r);
 void hl_tape_run_arb(const hl_instr *code, int n, arb_ptr r, slong prec);
 void hl_tape_consts_arb(arb_ptr r, slong prec, const hl_tape *tape);
+
+/* jit.c: the Taylor-ODE recursion of native.c compiled by libgccjit
+ * (HL_EUNSUP without it); the result is released by hl_tape_jit_release. */
+int hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tape *t, int order,
+                       hl_error *err);
+void hl_tape_jit_release(void *result);
 
 #endif
