@@ -83,5 +83,6 @@ int cmd_bracket(int argc, char **argv);
 int cmd_check(int argc, char **argv);
 int cmd_canonical(int argc, char **argv);
 int cmd_lie(int argc, char **argv);
+int cmd_run(int argc, char **argv); extern const char cmd_run_help[];
 
 #endif

@@ -82,6 +82,7 @@ static const cli_command commands[] = {
      "A series whose terms grow past 2000000 terms is stopped with a message.\n"
      "Exit status: 0 computed; 2 usage or input error (an order above the limit).\n"
      "Example: hamlie lie -H 'p^2/2 - cos(q)' --order 6\n"},
+    {"run", cmd_run, "run a scheme: a trajectory (CSV), its errors, observed orders", cmd_run_help},
 };
 
 #define NCOMMANDS ((int)(sizeof commands / sizeof commands[0]))

@@ -1,0 +1,167 @@
+/* hamlie — running a scheme: fixed-step trajectories, observers, errors
+ * against a reference, observed orders (in the spirit of GSL's odeiv2
+ * drivers: the caller owns the state, a callback receives each row).
+ *
+ *   hl_run *r;
+ *   hl_run_new(&r, sys, scheme, err);            // scheme NULL: adaptive Taylor
+ *   hl_run_observe(r, "x/p", err);                // any number of observers
+ *   hl_run_init_values(z0, sys, "x=1,p=0", err);  // every q_j and p_j named once
+ *   hl_run_fixed(r, z0, 0.1, 20, 1, row_fn, arg, &stats, err);
+ *   hl_run_free(r);
+ *
+ * A fixed-step run takes n = t/dt steps of the scheme's numeric stepper
+ * (scheme.h) from z0, at t_k = k*dt (computed, not accumulated).  n must be
+ * within 1e-9 of an integer ("t = 20 is not reachable with dt = 0.3: 66.67
+ * steps"); dt must be positive and finite.  Each row carries t, the state,
+ * H, the observers, and sigma = |z_k - z(t_k)|_2^2 where z(t) is the
+ * reference trajectory: the Taylor integrator of flow.h (tolerance ref_tol,
+ * default 1e-15, absolute and relative) evaluated by dense output exactly at
+ * every t_k, without changing its own steps.  Rows are delivered for k = 0,
+ * every `every`-th k, and the last step; the statistics (max |H - H0|, max
+ * error) are taken over every step.
+ *
+ * Failures stop the run and are reported with the step and the time: a
+ * state that is not finite (HL_EDOM, "blow-up"), a Newton iteration that
+ * does not converge (HL_ENOCONV, the stepper's message), a reference that
+ * cannot be integrated (the message says it is the reference).  The rows
+ * delivered before the failure are valid; stats describe the last good
+ * step.  A non-zero return of the callback stops the run and is returned.
+ *
+ * The adaptive run (scheme NULL) is the Taylor integrator itself at
+ * tolerance tol, with rows by dense output at t_k = k*dt (dt is then only
+ * the output spacing; sigma is not defined and reported as NaN).
+ */
+#ifndef HAMLIE_RUN_H
+#define HAMLIE_RUN_H
+
+#include <arb.h>
+
+#include "hamlie/error.h"
+#include "hamlie/ham.h"
+#include "hamlie/scheme.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct hl_run hl_run;
+
+/* sys and scheme are borrowed (they must outlive the run; scheme NULL for
+ * the adaptive Taylor integrator).  Each fixed-step run after the first
+ * builds a fresh stepper, so that the step numbers in its messages count
+ * from the start of that run.
+ * HL_EINVAL for a system without H or with parameters that have no value. */
+int hl_run_new(hl_run **out, hl_system *sys, const hl_scheme *scheme, hl_error *err);
+void hl_run_free(hl_run *r); /* NULL is a no-op */
+
+/* Add an observer: a formula in the system's variables, its parameters and
+ * H.  Errors point into formula. */
+int hl_run_observe(hl_run *r, const char *formula, hl_error *err);
+int hl_run_nobservers(const hl_run *r);
+
+/* The reference trajectory: on (default) or off, and its tolerance
+ * (default 1e-15; > 0). */
+void hl_run_set_reference(hl_run *r, int on, double tol);
+
+/* Off by default: for a fixed-step run of at least 200000 steps, compile
+ * H and the observers to machine code first (hl_tape_jit, tape.h: same
+ * results bit for bit, 10-20 ms of compilation; libgccjit's own
+ * allocations show as leaks under LeakSanitizer). */
+void hl_run_set_jit(hl_run *r, int on);
+
+/* z[0..2N-1] (q then p) from "x=1,p=0" (values are formulas in numbers,
+ * pi and set parameters: "q=pi/2").  Every variable must be given exactly
+ * once: a missing one is named. */
+int hl_run_init_values(double *z, hl_system *sys, const char *init, hl_error *err);
+
+/* The same in Arb at prec bits, from the exact form of each formula. */
+int hl_run_init_values_arb(arb_ptr z, hl_system *sys, const char *init, slong prec,
+                           hl_error *err);
+
+/* The number of steps t/dt, with the checks above. */
+int hl_run_nsteps(long *n, double dt, double t, hl_error *err);
+
+typedef struct hl_run_row {
+    long k;            /* step index */
+    double t;          /* k * dt */
+    const double *z;   /* 2N values: q then p */
+    double H;
+    const double *obs; /* the observers' values, in the order added */
+    double sigma;      /* |z_k - z(t_k)|^2, NaN without a reference */
+    const double *ref; /* z(t_k) (2N values), or NULL */
+} hl_run_row;
+
+typedef int (*hl_run_fn)(const hl_run_row *row, void *arg);
+
+typedef struct hl_run_stats {
+    long steps;      /* steps completed */
+    long nsteps;     /* steps asked for */
+    long rows;       /* rows delivered */
+    double t;        /* time of the last good step */
+    double H0, H;    /* at t = 0 and at t */
+    double max_dH;   /* max over steps of |H_k - H0| */
+    double sigma;    /* at t (NaN without a reference) */
+    double max_err;  /* max over steps of |z_k - z(t_k)|_2 (NaN without one) */
+    double err_final;/* |z_n - z(t_n)|_2 at t */
+    long ref_steps;  /* steps of the reference integrator */
+    int failed;      /* the run stopped on an error */
+} hl_run_stats;
+
+/* z0: 2N values (not modified).  stats may be NULL; its z is the run's
+ * (hl_run_state). */
+int hl_run_fixed(hl_run *r, const double *z0, double dt, double t, long every,
+                 hl_run_fn fn, void *arg, hl_run_stats *stats, hl_error *err);
+
+/* The adaptive Taylor integrator, rows at k*dt (see above). */
+int hl_run_adaptive(hl_run *r, const double *z0, double tol, double dt, double t,
+                    long every, hl_run_fn fn, void *arg, hl_run_stats *stats,
+                    hl_error *err);
+
+/* ---- Arb: the adaptive run at about `digits` decimal digits --------------
+ * hl_flow_arb (flow.h) with rows at t_k = T k / n (T from its text, exact
+ * when it is a decimal), H and the observers evaluated in Arb.  Values are
+ * midpoints (no error bound).  stats: max_dH and H as doubles. */
+typedef struct hl_run_row_arb {
+    long k;
+    const arb_struct *t;
+    arb_srcptr z;       /* 2N */
+    const arb_struct *H;
+    arb_srcptr obs;
+} hl_run_row_arb;
+
+typedef int (*hl_run_arb_fn)(const hl_run_row_arb *row, void *arg);
+
+int hl_run_adaptive_arb(hl_run *r, arb_srcptr z0, double digits, const char *T, long n,
+                        long every, hl_run_arb_fn fn, void *arg, hl_run_stats *stats,
+                        hl_error *err);
+
+/* The working precision in bits for `digits` decimal digits (as flow.h's). */
+slong hl_run_arb_prec(double digits);
+
+/* x with 17 significant digits in the layout of printf's "%.17g" (reads
+ * back as x; "inf", "-inf", "nan"; the last digit may differ from printf's
+ * at a near-tie), several times faster than printf.
+ * out holds at least 32 bytes; returns the length. */
+int hl_run_fmt(char *out, double x);
+
+/* The same with 15 digits when they read back as x (0.1 for 0.1), else 17:
+ * for times k*dt. */
+int hl_run_fmt_short(char *out, double x);
+
+/* The state after the last hl_run_fixed / hl_run_adaptive (2N values):
+ * the last good step, except after a blow-up detected in H (then the state
+ * whose H is not finite). */
+const double *hl_run_state(const hl_run *r);
+
+/* Observed global order: the scheme run to t with each step dts[i]
+ * (reference on), errmax[i] = max over steps of |z_k - z(t_k)|_2 (errfinal[i]
+ * the same at the final time; either may be NULL), and for i >= 1
+ * order[i] = log(errmax[i-1]/errmax[i]) / log(dts[i-1]/dts[i]) (order[0] = NaN). */
+int hl_run_orders(double *errmax, double *errfinal, double *order, hl_run *r,
+                  const double *z0, const double *dts, int n, double t, hl_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,809 @@
+/* hamlie run: a trajectory of a scheme (CSV), its summary, observed orders.
+ *
+ * The options proper to run are taken out of argv here, before the common
+ * parser (cli_parse) sees the rest: opts.c's table has no room for them.
+ * The CSV is streamed (a run can have millions of rows) in whole lines; the
+ * summary and the orders table are buffered and printed at the end. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "cli/cli.h"
+#include "hamlie/run.h"
+
+const char cmd_run_help[] =
+    "usage: hamlie run -H FORMULA (--scheme NAME | --map MAP | --equations EQS)\n"
+    "                  --dt STEP --t TIME --init x=1,p=0 [options]\n"
+    "\n"
+    "Run a one-step scheme with a fixed step from an initial point and write the\n"
+    "trajectory as CSV: t, the coordinates and momenta, H, sigma, the observers.\n"
+    "sigma = |z_n - z(t_n)|^2 is the squared distance to the exact flow, computed\n"
+    "by hamlie's Taylor integrator (tolerance 1e-15) at every t_n = n dt.\n"
+    "\n"
+    "  -H, --hamiltonian F  the Hamiltonian (required)\n"
+    "  --scheme NAME        a scheme of the catalog (hamlie schemes lists them)\n"
+    "  --map 'X = ...; P = ...'   the user's explicit map (D is the step)\n"
+    "  --equations '...'    the user's implicit scheme, e.g. '(X-x)/D = ...; ...'\n"
+    "  -n, --order N        the order of --scheme lie with --dt (default 4)\n"
+    "  --dt STEP            the step (> 0); t/dt must be a whole number\n"
+    "  --t TIME             the final time (>= 0)\n"
+    "  --init x=1,p=0       the initial point (values may be formulas: q=pi/2)\n"
+    "  --every K            write every K-th row (and the last; default 1)\n"
+    "  --observe F          a column more: any formula in the variables and H\n"
+    "                       (repeatable)\n"
+    "  --tol TOL            the tolerance of the Taylor integrator (reference, or\n"
+    "                       the adaptive run; default 1e-15)\n"
+    "  --no-reference       no reference trajectory: no sigma column (faster)\n"
+    "  --orders D1,D2,...   run with each step to --t and print the observed global\n"
+    "                       order log(e1/e2)/log(D1/D2) of consecutive steps; e is\n"
+    "                       the max over steps of |z_n - z(t_n)| (and at t)\n"
+    "  --out FILE           write the CSV to FILE (FILE.tmp, renamed at the end)\n"
+    "  --pairs, --param     as for every command\n"
+    "  --json               print a JSON summary (with --out the CSV goes to FILE,\n"
+    "                       without it no CSV is written)\n"
+    "  -h, --help           show this help\n"
+    "\n"
+    "--scheme lie with --tol (and no --dt, or --dt as the output spacing) is the\n"
+    "adaptive Taylor (Lie series) integrator; --scheme lie with --dt alone is the\n"
+    "fixed-step Lie series truncated after D^n.  Without --dt the adaptive run\n"
+    "writes 1001 rows.\n"
+    "  --digits D           the adaptive integrator in Arb at about D digits (values\n"
+    "                       printed with D digits; the initial values are read at\n"
+    "                       that precision: py=sqrt(3) is sqrt(3) to D digits)\n"
+    "\n"
+    "A run stops at a blow-up (a value not finite) or a Newton failure, with the\n"
+    "step and the time; the rows written before stay valid CSV (with --out they\n"
+    "are kept in FILE.partial).\n"
+    "Exit status: 0 the run completed; 2 usage or input error, or the run failed.\n"
+    "Example: hamlie run -H '(p^2+x^2)/2' --scheme euler --dt 0.1 --t 20 --init x=1,p=0\n";
+
+/* The options proper to run. */
+typedef struct run_opts {
+    const char *scheme, *equations, *init, *out, *orders;
+    const char *dt_s, *t_s, *tol_s, *every_s, *digits_s;
+    const char **observe;
+    int nobserve, no_ref;
+    double dt, t, tol, digits;
+    long every;
+    int have_dt;
+} run_opts;
+
+/* Take run's own options out of argv (both "--dt 0.1" and "--dt=0.1");
+ * the rest, in order, goes to cli_parse.  Returns -1, or 2 on a usage
+ * error.  Values are taken whole, so "--dt -1" reaches the range check. */
+static int take_opts(run_opts *r, int *argc, char **argv, const cli_command *cmd)
+{
+    static const char *const names[] = {"--scheme", "--equations", "--init", "--out",
+                                        "--orders", "--dt", "--t", "--tol", "--every",
+                                        "--digits", "--observe"};
+    int n = 0;
+    for (int i = 0; i < *argc; i++) {
+        const char *a = argv[i];
+        if (i > 0 && strcmp(a, "--") == 0) {
+            while (i < *argc)
+                argv[n++] = argv[i++];
+            break;
+        }
+        if (i > 0 && strcmp(a, "--no-reference") == 0) {
+            r->no_ref = 1;
+            continue;
+        }
+        int k = -1;
+        const char *val = NULL;
+        for (int j = 0; j < (int)(sizeof names / sizeof names[0]) && i > 0; j++) {
+            size_t l = strlen(names[j]);
+            if (strncmp(a, names[j], l) == 0 && (a[l] == '\0' || a[l] == '=')) {
+                k = j;
+                val = a[l] == '=' ? a + l + 1 : NULL;
+                break;
+            }
+        }
+        if (k < 0) {
+            argv[n++] = argv[i];
+            continue;
+        }
+        if (val == NULL) {
+            if (i + 1 >= *argc)
+                return cli_usage(cmd, "option '%s' needs a value", a);
+            val = argv[++i];
+        }
+        const char **slot[] = {&r->scheme, &r->equations, &r->init, &r->out, &r->orders,
+                               &r->dt_s, &r->t_s, &r->tol_s, &r->every_s, &r->digits_s};
+        if (k < 10)
+            *slot[k] = val;
+        else {
+            r->observe = hl_xrealloc(r->observe, (size_t)(r->nobserve + 1) * sizeof *r->observe);
+            r->observe[r->nobserve++] = val;
+        }
+    }
+    argv[n] = NULL;
+    *argc = n;
+    return -1;
+}
+
+static int parse_double(double *v, const char *s, const char *opt, const cli_command *cmd)
+{
+    char *end;
+    errno = 0;
+    *v = strtod(s, &end);
+    if (*s == '\0' || *end != '\0')
+        return cli_usage(cmd, "%s wants a number, not '%s'", opt, s);
+    return -1;
+}
+
+static int check_opts(run_opts *r, const cli_opts *o, const cli_command *cmd)
+{
+    int rc = -1;
+    if (o->H == NULL)
+        return cli_usage(cmd, "missing -H: a run needs a Hamiltonian");
+    if (o->nargs > 0)
+        return cli_usage(cmd, "unexpected argument '%s'", o->args[0]);
+    int nsrc = (r->scheme != NULL) + (o->map != NULL) + (r->equations != NULL);
+    if (nsrc != 1)
+        return cli_usage(cmd, nsrc == 0 ? "give a scheme: --scheme NAME, --map or --equations"
+                                        : "give only one of --scheme, --map and --equations");
+    if (r->digits_s != NULL) {
+        if ((rc = parse_double(&r->digits, r->digits_s, "--digits", cmd)) >= 0)
+            return rc;
+        if (!(r->digits >= 1 && r->digits <= 10000))
+            return cli_usage(cmd, "--digits wants a number of digits from 1 to 10000");
+        if (r->scheme == NULL || strcmp(r->scheme, "lie") != 0 || r->orders != NULL)
+            return cli_usage(cmd, "--digits is for the adaptive integrator: --scheme lie");
+    }
+    if (r->init == NULL)
+        return cli_usage(cmd, "missing --init: the initial point, e.g. --init x=1,p=0");
+    if (r->t_s == NULL)
+        return cli_usage(cmd, "missing --t: the final time");
+    if ((rc = parse_double(&r->t, r->t_s, "--t", cmd)) >= 0)
+        return rc;
+    r->have_dt = r->dt_s != NULL;
+    if (r->have_dt && (rc = parse_double(&r->dt, r->dt_s, "--dt", cmd)) >= 0)
+        return rc;
+    r->tol = 1e-15;
+    if (r->tol_s != NULL && (rc = parse_double(&r->tol, r->tol_s, "--tol", cmd)) >= 0)
+        return rc;
+    if (!(r->tol > 0) || !isfinite(r->tol))
+        return cli_usage(cmd, "--tol must be positive, not '%s'", r->tol_s);
+    r->every = 1;
+    if (r->every_s != NULL) {
+        char *end;
+        r->every = strtol(r->every_s, &end, 10);
+        if (*r->every_s == '\0' || *end != '\0' || r->every < 1)
+            return cli_usage(cmd, "--every wants a whole number >= 1, not '%s'", r->every_s);
+    }
+    return -1;
+}
+
+/* Is this the adaptive integrator (--scheme lie with --tol, or without --dt)? */
+static int adaptive(const run_opts *r)
+{
+    return r->scheme != NULL && strcmp(r->scheme, "lie") == 0 &&
+           (r->tol_s != NULL || r->digits_s != NULL || !r->have_dt) && r->orders == NULL;
+}
+
+/* ---- CSV ---------------------------------------------------------------- */
+
+typedef struct csv {
+    FILE *fp;
+    hl_buf buf;     /* whole lines waiting to be written */
+    int n2, nobs, sigma;
+    int io_error;
+    long rows;
+    /* progress */
+    int progress;
+    long nsteps, last_k;
+    struct timespec last;
+} csv;
+
+static void csv_field(hl_buf *b, const char *s)
+{
+    if (strpbrk(s, ",\"\n") == NULL) {
+        hl_buf_puts(b, s);
+        return;
+    }
+    hl_buf_putc(b, '"');
+    for (; *s; s++) {
+        if (*s == '"')
+            hl_buf_putc(b, '"');
+        hl_buf_putc(b, *s == '\n' ? ' ' : *s);
+    }
+    hl_buf_putc(b, '"');
+}
+
+static void csv_flush(csv *c)
+{
+    if (c->fp != NULL && c->buf.len > 0 && fwrite(c->buf.s, 1, c->buf.len, c->fp) != c->buf.len)
+        c->io_error = 1;
+    c->buf.len = 0;
+    if (c->buf.s != NULL)
+        c->buf.s[0] = '\0';
+    if (c->fp != NULL && fflush(c->fp) != 0)
+        c->io_error = 1;
+}
+
+static void csv_num(hl_buf *b, double v)
+{
+    char s[40];
+    s[0] = ',';
+    int n = hl_run_fmt(s + 1, v);
+    hl_buf_putn(b, s, (size_t)n + 1);
+}
+
+static double now(struct timespec *ts)
+{
+    clock_gettime(CLOCK_MONOTONIC, ts);
+    return (double)ts->tv_sec + 1e-9 * (double)ts->tv_nsec;
+}
+
+static void progress(csv *c, long k)
+{
+    if (!c->progress || k - c->last_k < 65536)
+        return;
+    c->last_k = k;
+    struct timespec ts;
+    double t1 = now(&ts), t0 = (double)c->last.tv_sec + 1e-9 * (double)c->last.tv_nsec;
+    if (t1 - t0 < 0.5)
+        return;
+    c->last = ts;
+    fprintf(stderr, "\rhamlie run: step %ld of %ld (%.0f%%)", k, c->nsteps,
+            100.0 * (double)k / (double)(c->nsteps > 0 ? c->nsteps : 1));
+}
+
+static int csv_row(const hl_run_row *row, void *arg)
+{
+    csv *c = arg;
+    progress(c, row->k);
+    if (c->fp == NULL)
+        return 0;
+    hl_buf *b = &c->buf;
+    /* t = k dt is printed in its shortest form when 15 digits give it back */
+    char ts[40];
+    hl_buf_putn(b, ts, (size_t)hl_run_fmt_short(ts, row->t));
+    for (int i = 0; i < c->n2; i++)
+        csv_num(b, row->z[i]);
+    csv_num(b, row->H);
+    if (c->sigma)
+        csv_num(b, row->sigma);
+    for (int i = 0; i < c->nobs; i++)
+        csv_num(b, row->obs[i]);
+    hl_buf_putc(b, '\n');
+    c->rows++;
+    if (b->len >= 1 << 16)
+        csv_flush(c);
+    return c->io_error ? HL_EIO : 0;
+}
+
+static void csv_header(csv *c, hl_system *sys, const run_opts *r)
+{
+    int N = hl_system_ndof(sys);
+    hl_buf_puts(&c->buf, "t");
+    for (int i = 0; i < 2 * N; i++) {
+        hl_buf_putc(&c->buf, ',');
+        csv_field(&c->buf, i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N));
+    }
+    hl_buf_puts(&c->buf, ",H");
+    if (c->sigma)
+        hl_buf_puts(&c->buf, ",sigma");
+    for (int i = 0; i < r->nobserve; i++) {
+        hl_buf_putc(&c->buf, ',');
+        csv_field(&c->buf, r->observe[i]);
+    }
+    hl_buf_putc(&c->buf, '\n');
+}
+
+/* ---- JSON (hand-written: report.h has no writer for doubles) ------------- */
+
+static void jnum(hl_buf *b, double v)
+{
+    if (isfinite(v))
+        hl_buf_printf(b, "%.17g", v);
+    else
+        hl_buf_puts(b, "null");
+}
+
+static void jkey(hl_buf *b, const char *k, int first)
+{
+    hl_buf_puts(b, first ? "\n  " : ",\n  ");
+    hl_json_escape(b, k);
+    hl_buf_puts(b, ": ");
+}
+
+static void jkv_num(hl_buf *b, const char *k, double v)
+{
+    jkey(b, k, 0);
+    jnum(b, v);
+}
+
+static void jkv_str(hl_buf *b, const char *k, const char *s)
+{
+    jkey(b, k, 0);
+    if (s == NULL)
+        hl_buf_puts(b, "null");
+    else
+        hl_json_escape(b, s);
+}
+
+static void json_head(hl_buf *b, hl_system *sys, const run_opts *r, const cli_opts *o)
+{
+    int N = hl_system_ndof(sys);
+    hl_buf_puts(b, "{");
+    jkey(b, "command", 1);
+    hl_json_escape(b, "run");
+    jkey(b, "symbols", 0);
+    hl_buf_puts(b, "{\"coordinates\": [");
+    for (int i = 0; i < N; i++) {
+        hl_buf_puts(b, i ? ", " : "");
+        hl_json_escape(b, hl_system_coord(sys, i));
+    }
+    hl_buf_puts(b, "], \"momenta\": [");
+    for (int i = 0; i < N; i++) {
+        hl_buf_puts(b, i ? ", " : "");
+        hl_json_escape(b, hl_system_momentum(sys, i));
+    }
+    hl_buf_puts(b, "], \"parameters\": [], \"step\": \"D\"}");
+    jkv_str(b, "H_input", o->H);
+    jkv_str(b, "scheme", r->scheme != NULL ? r->scheme : o->map != NULL ? "map" : "equations");
+    jkv_str(b, "integrator", adaptive(r) ? "adaptive-taylor" : "fixed-step");
+    jkv_num(b, "t", r->t);
+}
+
+static void json_state(hl_buf *b, const char *key, hl_system *sys, const double *z)
+{
+    int N = hl_system_ndof(sys);
+    jkey(b, key, 0);
+    hl_buf_puts(b, "{");
+    for (int i = 0; i < 2 * N; i++) {
+        hl_buf_puts(b, i ? ", " : "");
+        hl_json_escape(b, i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N));
+        hl_buf_puts(b, ": ");
+        jnum(b, z[i]);
+    }
+    hl_buf_puts(b, "}");
+}
+
+/* ---- the two modes ------------------------------------------------------ */
+
+static int open_out(csv *c, const run_opts *r, char **tmpname)
+{
+    *tmpname = NULL;
+    if (r->out == NULL) {
+        c->fp = stdout;
+        return CLI_OK;
+    }
+    size_t n = strlen(r->out) + 5;
+    *tmpname = hl_xmalloc(n);
+    snprintf(*tmpname, n, "%s.tmp", r->out);
+    c->fp = fopen(*tmpname, "w");
+    if (c->fp == NULL) {
+        fprintf(stderr, "hamlie: error: cannot write '%s': %s\n", *tmpname, strerror(errno));
+        return CLI_ERROR;
+    }
+    return CLI_OK;
+}
+
+/* Close the CSV: FILE.tmp becomes FILE on success, FILE.partial on failure. */
+static int close_out(csv *c, const run_opts *r, const char *tmpname, int ok,
+                     const hl_run_stats *s)
+{
+    csv_flush(c);
+    if (tmpname == NULL)
+        return c->io_error ? CLI_ERROR : CLI_OK;
+    if (fclose(c->fp) != 0)
+        c->io_error = 1;
+    c->fp = NULL;
+    if (c->io_error) {
+        fprintf(stderr, "hamlie: error: writing '%s' failed\n", tmpname);
+        return CLI_ERROR;
+    }
+    size_t n = strlen(r->out) + 9;
+    char *dst = hl_xmalloc(n);
+    snprintf(dst, n, ok ? "%s" : "%s.partial", r->out);
+    int rc = CLI_OK;
+    if (rename(tmpname, dst) != 0) {
+        fprintf(stderr, "hamlie: error: cannot rename '%s' to '%s': %s\n", tmpname, dst,
+                strerror(errno));
+        rc = CLI_ERROR;
+    } else if (!ok)
+        fprintf(stderr, "hamlie: note: the %ld rows written before the failure (to t = %.17g) "
+                        "are kept in '%s'\n", c->rows, s->t, dst);
+    free(dst);
+    return rc;
+}
+
+static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts *o,
+                  const double *z0)
+{
+    csv c;
+    memset(&c, 0, sizeof c);
+    hl_buf_init(&c.buf);
+    c.n2 = 2 * hl_system_ndof(sys);
+    c.nobs = r->nobserve;
+    int ad = adaptive(r);
+    c.sigma = !ad && !r->no_ref;
+    char *tmpname = NULL;
+    int rc = CLI_OK;
+    double dt = r->have_dt ? r->dt : r->t > 0 ? r->t / 1000 : 1;
+    long n = 0;
+    hl_error err;
+    hl_error_clear(&err);
+    if (hl_run_nsteps(&n, dt, r->t, &err) != HL_OK) { /* before any output */
+        hl_buf_clear(&c.buf);
+        return cli_fail(&err);
+    }
+    int want_csv = r->out != NULL || o->format != CLI_JSON;
+    if (want_csv && (rc = open_out(&c, r, &tmpname)) != CLI_OK) {
+        free(tmpname);
+        hl_buf_clear(&c.buf);
+        return rc;
+    }
+    if (!want_csv)
+        c.fp = NULL;
+    else
+        csv_header(&c, sys, r);
+    hl_run_set_reference(run, !r->no_ref, r->tol);
+    hl_run_set_jit(run, 1);
+    c.progress = isatty(2);
+    c.nsteps = n;
+    struct timespec t0;
+    double w0 = now(&t0);
+    c.last = t0;
+    hl_run_stats s;
+    memset(&s, 0, sizeof s);
+    int st = ad ? hl_run_adaptive(run, z0, r->tol, dt, r->t, r->every, csv_row, &c, &s, &err)
+                : hl_run_fixed(run, z0, dt, r->t, r->every, csv_row, &c, &s, &err);
+    struct timespec t1;
+    double wall = now(&t1) - w0;
+    if (c.progress && n >= 65536 * 2)
+        fputs("\r\033[K", stderr);
+    if (st == HL_EIO && c.io_error) {
+        close_out(&c, r, tmpname, 0, &s);
+        if (tmpname == NULL)
+            fprintf(stderr, "hamlie: error: writing to standard output failed\n");
+        rc = CLI_ERROR;
+    } else if (st != HL_OK) {
+        csv_flush(&c);
+        cli_fail(&err);
+        if (s.nsteps > 0 && (s.failed || s.steps > 0))
+            fprintf(stderr, "hamlie: the run stopped after step %ld of %ld (t = %.17g)\n",
+                    s.steps, s.nsteps, s.t);
+        if (want_csv)
+            close_out(&c, r, tmpname, 0, &s);
+        rc = CLI_ERROR;
+    } else {
+        rc = want_csv ? close_out(&c, r, tmpname, 1, &s) : CLI_OK;
+        if (rc == CLI_OK && (o->format == CLI_JSON || r->out != NULL)) {
+            hl_buf out;
+            hl_buf_init(&out);
+            if (o->format == CLI_JSON) {
+                json_head(&out, sys, r, o);
+                jkv_num(&out, "dt", dt);
+                jkey(&out, "steps", 0);
+                hl_buf_printf(&out, "%ld", s.steps);
+                jkey(&out, "rows", 0);
+                hl_buf_printf(&out, "%ld", s.rows);
+                jkv_num(&out, "final_t", s.t);
+                json_state(&out, "final_state", sys, hl_run_state(run));
+                jkv_num(&out, "H0", s.H0);
+                jkv_num(&out, "H_final", s.H);
+                jkv_num(&out, "max_abs_dH", s.max_dH);
+                jkv_num(&out, "sigma_final", s.sigma);
+                jkv_num(&out, "max_error", s.max_err);
+                jkv_num(&out, "tol", r->tol);
+                jkey(&out, "taylor_steps", 0);
+                hl_buf_printf(&out, "%ld", s.ref_steps);
+                jkv_str(&out, "out", r->out);
+                jkv_num(&out, "wall_time_s", wall);
+                hl_buf_puts(&out, "\n}\n");
+            } else {
+                hl_buf_printf(&out, "%ld steps to t = %.17g, max |H - H0| = %.3g", s.steps, s.t,
+                              s.max_dH);
+                if (c.sigma)
+                    hl_buf_printf(&out, ", final sigma = %.3g", s.sigma);
+                hl_buf_printf(&out, "; wrote %ld rows to %s\n", c.rows, r->out);
+            }
+            rc = cli_emit(&out, CLI_OK);
+        }
+    }
+    free(tmpname);
+    hl_buf_clear(&c.buf);
+    return rc;
+}
+
+/* A comma-separated list of steps. */
+static int read_steps(double **dts, int *n, const char *s, const cli_command *cmd)
+{
+    *n = 0;
+    *dts = NULL;
+    const char *p = s;
+    while (*p) {
+        char *end;
+        double v = strtod(p, &end);
+        if (end == p || (*end != ',' && *end != '\0'))
+            return cli_usage(cmd, "--orders wants steps separated by ',', not '%s'", s);
+        *dts = hl_xrealloc(*dts, (size_t)(*n + 1) * sizeof **dts);
+        (*dts)[(*n)++] = v;
+        p = *end == ',' ? end + 1 : end;
+    }
+    if (*n < 2)
+        return cli_usage(cmd, "--orders wants at least two steps");
+    return -1;
+}
+
+static int do_orders(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts *o,
+                     const double *z0, const cli_command *cmd)
+{
+    double *dts;
+    int n, rc = read_steps(&dts, &n, r->orders, cmd);
+    if (rc >= 0) {
+        free(dts);
+        return rc;
+    }
+    double *e = hl_xmalloc((size_t)n * sizeof *e), *ef = hl_xmalloc((size_t)n * sizeof *ef);
+    double *ord = hl_xmalloc((size_t)n * sizeof *ord);
+    hl_error err;
+    hl_error_clear(&err);
+    hl_run_set_reference(run, 1, r->tol);
+    int st = hl_run_orders(e, ef, ord, run, z0, dts, n, r->t, &err);
+    if (st != HL_OK)
+        rc = cli_fail(&err);
+    else {
+        hl_buf out;
+        hl_buf_init(&out);
+        if (o->format == CLI_JSON) {
+            json_head(&out, sys, r, o);
+            jkv_str(&out, "error_measure", "max over steps of |z_n - z(t_n)|_2");
+            jkey(&out, "orders", 0);
+            hl_buf_puts(&out, "[");
+            for (int i = 0; i < n; i++) {
+                hl_buf_puts(&out, i ? ",\n    {\"dt\": " : "\n    {\"dt\": ");
+                jnum(&out, dts[i]);
+                hl_buf_puts(&out, ", \"max_error\": ");
+                jnum(&out, e[i]);
+                hl_buf_puts(&out, ", \"final_error\": ");
+                jnum(&out, ef[i]);
+                hl_buf_puts(&out, ", \"order\": ");
+                jnum(&out, ord[i]);
+                hl_buf_puts(&out, ", \"order_final\": ");
+                jnum(&out, i ? log(ef[i - 1] / ef[i]) / log(dts[i - 1] / dts[i]) : NAN);
+                hl_buf_puts(&out, "}");
+            }
+            hl_buf_puts(&out, "\n  ]\n}\n");
+        } else {
+            hl_buf_printf(&out, "observed global order to t = %g (error: max over steps of "
+                                "|z_n - z(t_n)|; final: at t)\n", r->t);
+            hl_buf_printf(&out, "%-12s %-12s %-7s %-12s %s\n", "dt", "max error", "order",
+                          "final error", "order");
+            for (int i = 0; i < n; i++) {
+                hl_buf_printf(&out, "%-12g %-12.4e ", dts[i], e[i]);
+                if (i == 0)
+                    hl_buf_printf(&out, "%-7s %-12.4e %s\n", "-", ef[i], "-");
+                else
+                    hl_buf_printf(&out, "%-7.3f %-12.4e %.3f\n", ord[i], ef[i],
+                                  log(ef[i - 1] / ef[i]) / log(dts[i - 1] / dts[i]));
+            }
+        }
+        rc = cli_emit(&out, CLI_OK);
+    }
+    free(dts), free(e), free(ef), free(ord);
+    return rc;
+}
+
+/* ---- --digits: the adaptive run in Arb ------------------------------------- */
+
+typedef struct csv_arb {
+    csv c;
+    long ndig;
+} csv_arb;
+
+static void arb_field(hl_buf *b, const arb_struct *x, long ndig)
+{
+    char *str = arb_get_str(x, ndig, ARB_STR_NO_RADIUS);
+    hl_buf_puts(b, str);
+    flint_free(str);
+}
+
+static int csv_row_arb(const hl_run_row_arb *row, void *arg)
+{
+    csv_arb *ca = arg;
+    csv *c = &ca->c;
+    progress(c, row->k);
+    if (c->fp == NULL)
+        return 0;
+    hl_buf *b = &c->buf;
+    arb_field(b, row->t, ca->ndig);
+    for (int i = 0; i < c->n2; i++) {
+        hl_buf_putc(b, ',');
+        arb_field(b, row->z + i, ca->ndig);
+    }
+    hl_buf_putc(b, ',');
+    arb_field(b, row->H, ca->ndig);
+    for (int i = 0; i < c->nobs; i++) {
+        hl_buf_putc(b, ',');
+        arb_field(b, row->obs + i, ca->ndig);
+    }
+    hl_buf_putc(b, '\n');
+    c->rows++;
+    if (b->len >= 1 << 16)
+        csv_flush(c);
+    return c->io_error ? HL_EIO : 0;
+}
+
+/* The last row's state as strings (kept by a wrapper around csv_row_arb). */
+typedef struct last_arb {
+    csv_arb ca;
+    int n2;
+    char **z;
+} last_arb;
+
+static int row_arb_keep(const hl_run_row_arb *row, void *arg)
+{
+    last_arb *l = arg;
+    for (int i = 0; i < l->n2; i++) {
+        flint_free(l->z[i]);
+        l->z[i] = arb_get_str(row->z + i, l->ca.ndig, ARB_STR_NO_RADIUS);
+    }
+    return csv_row_arb(row, &l->ca);
+}
+
+static int do_run_arb(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts *o)
+{
+    last_arb l;
+    memset(&l, 0, sizeof l);
+    csv *c = &l.ca.c;
+    hl_buf_init(&c->buf);
+    l.n2 = c->n2 = 2 * hl_system_ndof(sys);
+    l.z = hl_xcalloc((size_t)l.n2, sizeof *l.z);
+    l.ca.ndig = (long)ceil(r->digits);
+    c->nobs = r->nobserve;
+    hl_error err;
+    hl_error_clear(&err);
+    double dt = r->have_dt ? r->dt : r->t > 0 ? r->t / 1000 : 1;
+    long n = 0;
+    int rc = CLI_OK;
+    slong prec = hl_run_arb_prec(r->digits);
+    arb_ptr z0 = _arb_vec_init(l.n2);
+    char *tmpname = NULL;
+    int want_csv = r->out != NULL || o->format != CLI_JSON;
+    if (hl_run_nsteps(&n, dt, r->t, &err) != HL_OK ||
+        hl_run_init_values_arb(z0, sys, r->init, prec, &err) != HL_OK) {
+        rc = cli_fail(&err);
+        goto done;
+    }
+    if (want_csv && (rc = open_out(c, r, &tmpname)) != CLI_OK)
+        goto done;
+    if (want_csv)
+        csv_header(c, sys, r);
+    c->progress = isatty(2);
+    c->nsteps = n;
+    struct timespec t0;
+    double w0 = now(&t0);
+    c->last = t0;
+    hl_run_stats s;
+    memset(&s, 0, sizeof s);
+    int st = hl_run_adaptive_arb(run, z0, r->digits, r->t_s, n, r->every, row_arb_keep, &l, &s,
+                                 &err);
+    double wall = now(&t0) - w0;
+    if (c->progress && n >= 65536 * 2)
+        fputs("\r\033[K", stderr);
+    if (st != HL_OK) {
+        csv_flush(c);
+        if (!(st == HL_EIO && c->io_error))
+            cli_fail(&err);
+        if (want_csv)
+            close_out(c, r, tmpname, 0, &s);
+        rc = CLI_ERROR;
+        goto done;
+    }
+    rc = want_csv ? close_out(c, r, tmpname, 1, &s) : CLI_OK;
+    if (rc == CLI_OK && o->format == CLI_JSON) {
+        hl_buf out;
+        hl_buf_init(&out);
+        json_head(&out, sys, r, o);
+        jkv_num(&out, "digits", r->digits);
+        jkey(&out, "outputs", 0);
+        hl_buf_printf(&out, "%ld", s.steps);
+        jkey(&out, "rows", 0);
+        hl_buf_printf(&out, "%ld", s.rows);
+        jkv_str(&out, "final_t", r->t_s);
+        jkey(&out, "final_state", 0);
+        hl_buf_puts(&out, "{");
+        for (int i = 0; i < l.n2; i++) {
+            int N = l.n2 / 2;
+            hl_buf_puts(&out, i ? ", " : "");
+            hl_json_escape(&out, i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N));
+            hl_buf_puts(&out, ": ");
+            hl_json_escape(&out, l.z[i] != NULL ? l.z[i] : "");
+        }
+        hl_buf_puts(&out, "}");
+        jkv_num(&out, "H0", s.H0);
+        jkv_num(&out, "max_abs_dH", s.max_dH);
+        jkey(&out, "taylor_steps", 0);
+        hl_buf_printf(&out, "%ld", s.ref_steps);
+        jkv_str(&out, "out", r->out);
+        jkv_num(&out, "wall_time_s", wall);
+        hl_buf_puts(&out, "\n}\n");
+        rc = cli_emit(&out, CLI_OK);
+    }
+done:
+    for (int i = 0; i < l.n2; i++)
+        flint_free(l.z[i]);
+    free(l.z);
+    free(tmpname);
+    _arb_vec_clear(z0, l.n2);
+    hl_buf_clear(&c->buf);
+    return rc;
+}
+
+static int build(hl_run **run, hl_scheme **sch, hl_system *sys, const run_opts *r,
+                 const cli_opts *o, hl_error *err)
+{
+    int st = HL_OK;
+    if (!adaptive(r)) {
+        if (o->map != NULL) {
+            if ((st = hl_scheme_from_map(sch, o->map, sys, err)) != HL_OK)
+                hl_error_prefix(err, "in --map");
+        } else if (r->equations != NULL) {
+            if ((st = hl_scheme_from_equations(sch, r->equations, sys, err)) != HL_OK)
+                hl_error_prefix(err, "in --equations");
+        } else
+            st = hl_scheme_new(sch, r->scheme, o->have_order ? o->order : 0, sys, err);
+    }
+    if (st == HL_OK)
+        st = hl_run_new(run, sys, *sch, err);
+    for (int i = 0; st == HL_OK && i < r->nobserve; i++)
+        if ((st = hl_run_observe(*run, r->observe[i], err)) != HL_OK)
+            hl_error_prefix(err, "in --observe");
+    return st;
+}
+
+int cmd_run(int argc, char **argv)
+{
+    const cli_command *cmd = cli_find("run");
+    run_opts r;
+    cli_opts o;
+    memset(&r, 0, sizeof r);
+    memset(&o, 0, sizeof o);
+    char **av = hl_xmalloc((size_t)(argc + 1) * sizeof *av);
+    memcpy(av, argv, (size_t)argc * sizeof *av);
+    int ac = argc;
+    int rc = take_opts(&r, &ac, av, cmd);
+    if (rc < 0)
+        rc = cli_parse(&o, ac, av, CLI_OPT_H | CLI_OPT_MAP | CLI_OPT_ORDER, cmd);
+    if (rc < 0)
+        rc = check_opts(&r, &o, cmd);
+    hl_system *sys = NULL;
+    hl_scheme *sch = NULL;
+    hl_run *run = NULL;
+    if (rc < 0) {
+        rc = cli_system(&sys, &o, NULL); /* H alone defines the system */
+        rc = rc == CLI_OK ? -1 : rc;
+    }
+    hl_error err;
+    hl_error_clear(&err);
+    double z0[2 * 64];
+    if (rc < 0 && hl_system_ndof(sys) > 64) {
+        fprintf(stderr, "hamlie: error: run handles at most 64 degrees of freedom\n");
+        rc = CLI_ERROR;
+    }
+    if (rc < 0 && hl_run_init_values(z0, sys, r.init, &err) != HL_OK) {
+        hl_error_prefix(&err, "in --init");
+        rc = cli_fail(&err);
+    }
+    if (rc < 0 && build(&run, &sch, sys, &r, &o, &err) != HL_OK)
+        rc = cli_fail(&err);
+    if (rc < 0)
+        rc = r.orders != NULL    ? do_orders(run, sys, &r, &o, z0, cmd)
+             : r.digits_s != NULL ? do_run_arb(run, sys, &r, &o)
+                                  : do_run(run, sys, &r, &o, z0);
+    hl_run_free(run);
+    hl_scheme_free(sch);
+    hl_system_free(sys);
+    cli_opts_clear(&o);
+    free(r.observe);
+    free(av);
+    return rc;
+}

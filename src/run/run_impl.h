@@ -1,0 +1,27 @@
+/* Internal to src/run/. */
+#ifndef HAMLIE_RUN_IMPL_H
+#define HAMLIE_RUN_IMPL_H
+
+#include "hamlie/flow.h"
+#include "hamlie/run.h"
+
+struct hl_run {
+    hl_system *sys;
+    int N;
+    const hl_scheme *scheme;    /* borrowed; NULL for the adaptive run */
+    hl_scheme_stepper *stepper; /* NULL for the adaptive run */
+    int stepped;                /* the stepper has taken steps: rebuild it */
+    const char **names;         /* q_1..q_N, p_1..p_N (borrowed from sys) */
+    const hl_expr **outs;       /* H, then the observers */
+    int nout;
+    hl_tape *obs;               /* outs over names; rebuilt when stale */
+    hl_tape *vf;                /* the Hamiltonian vector field, for the reference */
+    int ref_on;
+    int jit;                    /* compile obs to machine code for long runs */
+    double ref_tol;
+    double *z, *ref, *vals;     /* state, reference, H and observers */
+};
+
+int hl_run_compile_(hl_run *r, hl_error *err);
+
+#endif
