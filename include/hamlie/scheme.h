@@ -191,6 +191,13 @@ void hl_scheme_stepper_free(hl_scheme_stepper *st); /* NULL is a no-op */
  * finite; z is left untouched on failure. */
 int hl_scheme_step(hl_scheme_stepper *st, double *z, double D, double t, hl_error *err);
 
+/* Compile the stepper's tapes to machine code (tape.h: hl_tape_jit) when
+ * a run of nsteps steps evaluates each of them more often than its
+ * break-even (hl_tape_jit_breakeven); the steps stay the same bit for bit.
+ * Best effort: without libgccjit, or if compiling fails, the interpreter
+ * goes on.  Returns how many tapes are now machine code. */
+int hl_scheme_stepper_jit(hl_scheme_stepper *st, long nsteps);
+
 /* Newton iterations taken by the last step (0 for an explicit scheme). */
 int hl_scheme_stepper_iterations(const hl_scheme_stepper *st);
 

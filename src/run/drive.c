@@ -181,6 +181,8 @@ int hl_run_fixed(hl_run *r, const double *z0, double dt, double t, long every,
     if (r->jit && d.n >= JIT_MIN_STEPS && !hl_tape_jit_active(r->obs) &&
         hl_tape_jit_available())
         hl_tape_jit(r->obs, NULL); /* on failure the interpreter goes on */
+    if (r->jit)
+        hl_scheme_stepper_jit(r->stepper, d.n);
     st = row(&d, 0, r->ref_on ? z0 : NULL);
     if (st == HL_OK && r->ref_on)
         st = fixed_ref(&d, err);

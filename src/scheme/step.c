@@ -35,6 +35,26 @@ void hl_scheme_stepper_free(hl_scheme_stepper *st)
 
 int hl_scheme_stepper_iterations(const hl_scheme_stepper *st) { return st->iters; }
 
+/* Each step evaluates the step tape once (explicit) or the residual and
+ * Jacobian tapes once per Newton iteration; counting one evaluation a step
+ * underestimates, so compiling is never chosen where it cannot pay. */
+static int jit_if_it_pays(hl_tape *t, long evaluations)
+{
+    if (t == NULL)
+        return 0;
+    if (!hl_tape_jit_active(t) && evaluations >= hl_tape_jit_breakeven(t))
+        hl_tape_jit(t, NULL); /* on failure the interpreter goes on */
+    return hl_tape_jit_active(t);
+}
+
+int hl_scheme_stepper_jit(hl_scheme_stepper *st, long nsteps)
+{
+    if (!hl_tape_jit_available())
+        return 0;
+    return jit_if_it_pays(st->tape, nsteps) + jit_if_it_pays(st->jac, nsteps) +
+           jit_if_it_pays(st->start, nsteps);
+}
+
 /* x exactly, as a rational (a double is a dyadic rational). */
 static const hl_expr *num_d(hl_pool *pool, double x)
 {
