@@ -83,6 +83,9 @@ static const cli_command commands[] = {
      "Exit status: 0 computed; 2 usage or input error (an order above the limit).\n"
      "Example: hamlie lie -H 'p^2/2 - cos(q)' --order 6\n"},
     {"run", cmd_run, "run a scheme: a trajectory (CSV), its errors, observed orders", cmd_run_help},
+    {"schemes", cmd_schemes, "the catalog of one-step schemes", cmd_schemes_help},
+    {"errors", cmd_errors, "error analysis of a scheme: v_k, order, K(D) (paper §4)",
+     cmd_errors_help},
 };
 
 #define NCOMMANDS ((int)(sizeof commands / sizeof commands[0]))

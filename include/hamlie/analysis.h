@@ -1,0 +1,158 @@
+/* hamlie — error analysis of one-step schemes (§4 of the paper).
+ *
+ * For a scheme psi_D with expansion psi_D(z) = sum_k D^k psi_k(z), the error
+ * fields v_k (k >= 2) are defined by
+ *   psi_D - exp(D g) = sum_k D^k/k! v_k,  v_k(z_j) = k! ([D^k] psi_j - g^k z_j / k!).
+ * They are computed twice: directly (the expansion minus the Lie series) and
+ * from K(D) = psi_{-D} o d/dD psi_D alone, order by order: with
+ * psi~ = exp(D g) + sum_{j<k} D^j/j! v_j, the identity
+ *   K(z; D) = (d/dD psi_D)(psi_{-D}(z))
+ * gives v_k = (k-1)! ([D^(k-1)] K - [D^(k-1)] K~), K~ the K of psi~.
+ * (The paper's printed second and third differences are not used.)
+ *
+ * The leading field v_m is classified (hl_errfield_kind).
+ */
+#ifndef HAMLIE_ANALYSIS_H
+#define HAMLIE_ANALYSIS_H
+
+#include "hamlie/error.h"
+#include "hamlie/alg.h"
+#include "hamlie/ham.h"
+#include "hamlie/series.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum hl_errfield_kind {
+    HL_ERRFIELD_ZERO = 0,     /* v = 0 */
+    HL_ERRFIELD_TIME_SHIFT,   /* v = c g, c a constant */
+    HL_ERRFIELD_PARALLEL,     /* v = lambda(z) g, lambda not constant */
+    HL_ERRFIELD_SCALING,      /* v = sum_j c_j z_j d/dz_j, constants c_j */
+    HL_ERRFIELD_HAMILTONIAN,  /* v = J grad h */
+    HL_ERRFIELD_GENERAL
+} hl_errfield_kind;
+
+typedef struct hl_errfield {
+    hl_errfield_kind kind;
+    hl_alg lambda;   /* TIME_SHIFT, PARALLEL: v = lambda g */
+    hl_alg *scale;   /* SCALING: c_j, 2N entries (NULL otherwise) */
+    int hamiltonian; /* the Hamiltonian conditions hold (also for the kinds above) */
+    int have_h;      /* h found (polynomial fields, homogeneous Euler formula) */
+    hl_alg h;        /* v = J grad h: v(q_j) = dh/dp_j, v(p_j) = -dh/dq_j */
+} hl_errfield;
+
+typedef struct hl_errors {
+    int N;          /* degrees of freedom */
+    int n;          /* v_k known for k = 2..n */
+    hl_alg *v;      /* v[k*2N + i], k = 0..n (k < 2 are zero): direct */
+    hl_alg *vK;     /* the same from K alone */
+    int agree;      /* the two computations agree for every k */
+    int disagree_k; /* first k where they do not (0 if they agree) */
+    int leading;    /* m: the least k with v_k != 0, or 0 if none up to n */
+    int order;      /* m - 1, or n when no error up to n (exact to that order) */
+} hl_errors;
+
+/* psi: 2N series (Q_1..Q_N, P_1..P_N) known to at least O(D^(n+1)).
+ * Fills e (call hl_errors_clear after, also on failure). */
+int hl_errors_compute(hl_errors *e, const hl_series *psi, hl_system *sys, int n,
+                      hl_error *err);
+void hl_errors_clear(hl_errors *e, hl_system *sys);
+
+/* The field of v_k: 2N components. */
+static inline hl_alg *hl_errors_field(const hl_errors *e, int k) { return e->v + k * 2 * e->N; }
+
+/* Classify a vector field v (2N components on (q, p)) against the generator. */
+int hl_errfield_classify(hl_errfield *f, const hl_alg *v, hl_system *sys, hl_error *err);
+void hl_errfield_clear(hl_errfield *f, hl_system *sys);
+
+/* Do the 2N components v satisfy the Hamiltonian conditions
+ * d a_i/d q_j + d b_j/d p_i = 0, d a_i/d p_j = d a_j/d p_i, d b_i/d q_j = d b_j/d q_i
+ * (a = v(q), b = v(p))? */
+int hl_errfield_is_hamiltonian(int *yes, const hl_alg *v, hl_system *sys, hl_error *err);
+
+/* ---- closed forms and corrections --------------------------------------- */
+
+struct hl_scheme;
+
+/* The images (Q_1..Q_N, P_1..P_N) of an explicit scheme (s->all_explicit) in
+ * closed form: its equations evaluated in order.  HL_EINVAL for an implicit
+ * scheme or one with integrals. */
+int hl_errors_scheme_map(hl_alg *images, const struct hl_scheme *s, hl_error *err);
+
+/* K(D) = (d/dD psi_D)(psi_{-D}(z)) in closed form for a map given by its 2N
+ * images (hl_alg_subst of psi_{-D}'s components into d psi/dD). */
+int hl_errors_K_closed(hl_alg *K, const hl_alg *images, hl_system *sys, hl_error *err);
+
+/* The corrected scheme psi_D - sum_{k=2}^{m} D^k/k! v_k (m <= e->n):
+ * as series (out: 2N series, the length of psi's) and, when images is not
+ * NULL, as a map (images replaced in place). */
+void hl_errors_correct_series(hl_series *out, const hl_series *psi, const hl_errors *e, int m,
+                              hl_system *sys);
+void hl_errors_correct_map(hl_alg *images, const hl_errors *e, int m, hl_system *sys);
+
+/* ---- time reparametrisation (part 4) ----------------------------------- */
+
+/* The series tau(D) = D + a_2 D^2 + ... + a_n D^n with
+ * psi_D = exp(tau(D) g) + O(D^(n+1)), solved order by order: the D^k
+ * coefficient of psi minus that of exp(tau_{<k}(D) g) z must be a_k g z with
+ * a_k free of the phase variables.  *ok = 0 and *fail_k = k when it is not
+ * (psi is then not a pure time translation at order k).  tau gets n + 1
+ * coefficients.  psi: 2N series known to O(D^(n+1)). */
+int hl_errors_time_series(hl_series *tau, int *ok, int *fail_k, const hl_series *psi,
+                          hl_system *sys, int n, hl_error *err);
+
+/* Closed form for a map of one dof on H = (p^2 + q^2)/2 that is linear,
+ * z -> M(D) z, and a rotation (M11 = M22, M12 = -M21, M11^2 + M12^2 = 1):
+ * tan(tau/2) = M12/(1 + M11) =: r, tau = 2 atan(r).  When r = c D (c a
+ * constant) also the step D2 with psi_D o psi_D = psi_{D2}: r(D2) = tan(tau)
+ * = 2r/(1 - r^2), D2 = 2D/(1 - c^2 D^2).  *ok = 0 when the map is not such
+ * a rotation; *have_D2 = 0 when r is not c D. */
+int hl_errors_time_closed(hl_alg *tau, hl_alg *r, int *ok, hl_alg *D2, int *have_D2,
+                          const hl_alg *images, hl_system *sys, hl_error *err);
+
+/* ---- invariants of a field (part 5) ------------------------------------ */
+
+#define HL_INVARIANTS_MAX_MONOMIALS 2000
+
+/* Polynomial first integrals of the field v (2N components, polynomials in
+ * the phase variables with rational coefficients) of degree 1..degree: a
+ * basis of {phi : v(phi) = 0}, by exact linear algebra over Q on the
+ * coefficients (FLINT nullspace), each checked with v(phi) = 0.  *out is a
+ * new vector of *count elements (hl_alg_vec_free it with *count, NULL when
+ * 0).  *applicable = 0 when v is not such a polynomial field. */
+int hl_field_poly_invariants(hl_alg **out, int *count, int *applicable, const hl_alg *v,
+                             int degree, hl_system *sys, hl_error *err);
+
+/* For a linear field (components linear forms over Q): rational first
+ * integrals phi1/phi2 from Darboux polynomials, eigenvectors of v acting on
+ * homogeneous polynomials of degree d = 1..degree with rational eigenvalues,
+ * paired within one eigenvalue (the first eigenvector divided by each
+ * other); each checked with v(phi) = 0.  *applicable = 0 when v is not
+ * linear. */
+int hl_field_darboux_invariants(hl_alg **out, int *count, int *applicable, const hl_alg *v,
+                                int degree, hl_system *sys, hl_error *err);
+
+/* ---- backward error analysis (part 6) ----------------------------------- */
+
+/* The modified vector field f~ = f_1 + D f_2 + D^2 f_3 + ... (f_1 = f, the
+ * generator's field) with exp(D f~) z = psi_D(z) + O(D^(n+1)), matched order
+ * by order: exp(D F) z = sum_k D^k/k! L_F^k z, L_F phi = sum_i F_i dphi/dz_i,
+ * and f_(j+1) = [D^(j+1)] (psi - exp(D F_(<=j)) z).  mf[j*2N + i], j = 1..n
+ * (mf has (n+1)*2N entries; j = 0 is left zero).  psi: 2N series known to
+ * O(D^(n+1)). */
+int hl_modified_field(hl_alg *mf, const hl_series *psi, hl_system *sys, int n, hl_error *err);
+
+/* The same from psi's series alone (implicit schemes): when every
+ * coefficient is linear in (q, p) with constant coefficients, a rotation to
+ * O(D^(n+1)), and the series of r = M12/(1 + M11) is c D + O(D^(n+1)),
+ * *ok = 1 and tau = 2 atan(c D), r = c D, D2 = 2D/(1 - c^2 D^2): identified
+ * from the series to the order computed, not proved. */
+int hl_errors_time_closed_series(hl_alg *tau, hl_alg *r, int *ok, hl_alg *D2,
+                                 const hl_series *psi, hl_system *sys, int n, hl_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

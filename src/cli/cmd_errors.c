@@ -1,0 +1,786 @@
+/* hamlie errors: the error fields v_k of a scheme (paper §4), computed two
+ * ways, the order, the leading error classified, K(D), corrected schemes.
+ * Its own options (--scheme, --equations, --correct) are taken out of argv
+ * before the common parser sees the rest, as run does. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli/cli.h"
+#include "hamlie/analysis.h"
+#include "hamlie/scheme.h"
+
+#define ERRORS_MAX_ORDER 40
+#define MOD_MAX 5 /* the modified field is computed to f_5 (D^4) at most */
+#define K_PRINT_MAX 200 /* terms of K's closed form printed in text */
+
+const char cmd_errors_help[] =
+    "usage: hamlie errors -H FORMULA (--scheme NAME | --map MAP | --equations EQS)\n"
+    "                     [--order N] [--correct M] [--invariants-degree d] [options]\n"
+    "\n"
+    "Error analysis of a one-step scheme psi_D (paper §4).  The error fields v_k,\n"
+    "k = 2..N, are defined by  psi_D - exp(D g) = sum_k D^k/k! v_k  and computed two\n"
+    "ways: from the scheme's expansion minus the Lie series, and from\n"
+    "K(D) = psi_{-D} o d/dD psi_D alone, order by order; the two must agree.  The\n"
+    "order of the scheme is (the least k with v_k != 0) - 1.  The leading field\n"
+    "is classified: a time shift c g, parallel to g (lambda(z) g), a scaling, a\n"
+    "Hamiltonian field (with its h when polynomial), or general.  For an explicit\n"
+    "scheme the map and K(D) are printed in closed form.  Also: invariants of the\n"
+    "leading field (--invariants-degree), the time reparametrisation tau(D) when it\n"
+    "is c g, and the modified vector field (backward error analysis) with its\n"
+    "modified Hamiltonian when polynomial.\n"
+    "\n"
+    "  -H, --hamiltonian F  the Hamiltonian (required)\n"
+    "  --scheme NAME        a scheme of the catalog (hamlie schemes lists them)\n"
+    "  --map MAP            an explicit map 'X = ...; P = ...'\n"
+    "  --equations EQS      an implicit scheme '(X-x)/D = ...; (P-p)/D = ...'\n"
+    "  -n, --order N        compute v_2..v_N (2..40; default 4)\n"
+    "  --correct M          also analyse psi_D - sum_{k=2}^M D^k/k! v_k (M <= N)\n"
+    "  --invariants-degree d  search polynomial invariants of the leading field up\n"
+    "                       to degree d, and Darboux ratios for a linear field\n"
+    "                       (0..8, default 2; 0: no search)\n"
+    "  --pairs x:px,y:py    the canonical pairs\n"
+    "  --param k=2          give a parameter a value (repeatable)\n"
+    "  --json               print a JSON object (schema: docs/json.md)\n"
+    "  --latex              print formulas as LaTeX\n"
+    "  -h, --help           show this help\n"
+    "\n"
+    "Exit status: 0 computed; 2 usage or input error (unknown scheme, a scheme\n"
+    "that is not consistent or not determined at D = 0, ...).\n"
+    "Example: hamlie errors -H '(p^2+x^2)/2' --scheme euler --order 7\n";
+
+typedef struct err_opts {
+    const char *scheme, *equations, *correct_s, *invdeg_s;
+    int correct, invdeg;
+} err_opts;
+
+static int take_opts(err_opts *r, int *argc, char **argv, const cli_command *cmd)
+{
+    static const char *const names[] = {"--scheme", "--equations", "--correct",
+                                        "--invariants-degree"};
+    const char **slot[] = {&r->scheme, &r->equations, &r->correct_s, &r->invdeg_s};
+    int n = 0;
+    for (int i = 0; i < *argc; i++) {
+        const char *a = argv[i];
+        if (i > 0 && strcmp(a, "--") == 0) {
+            while (i < *argc)
+                argv[n++] = argv[i++];
+            break;
+        }
+        int k = -1;
+        const char *val = NULL;
+        for (int j = 0; j < 4 && i > 0; j++) {
+            size_t l = strlen(names[j]);
+            if (strncmp(a, names[j], l) == 0 && (a[l] == '\0' || a[l] == '=')) {
+                k = j;
+                val = a[l] == '=' ? a + l + 1 : NULL;
+                break;
+            }
+        }
+        if (k < 0) {
+            argv[n++] = argv[i];
+            continue;
+        }
+        if (val == NULL) {
+            if (i + 1 >= *argc)
+                return cli_usage(cmd, "option '%s' needs a value", a);
+            val = argv[++i];
+        }
+        *slot[k] = val;
+    }
+    argv[n] = NULL;
+    *argc = n;
+    return -1;
+}
+
+static int check_opts(err_opts *r, cli_opts *o, const cli_command *cmd)
+{
+    if (o->H == NULL)
+        return cli_usage(cmd, "missing -H: the error analysis needs a Hamiltonian");
+    if (o->nargs > 0)
+        return cli_usage(cmd, "unexpected argument '%s'", o->args[0]);
+    int nsrc = (r->scheme != NULL) + (o->map != NULL) + (r->equations != NULL);
+    if (nsrc != 1)
+        return cli_usage(cmd, nsrc == 0 ? "give a scheme: --scheme NAME, --map or --equations"
+                                        : "give only one of --scheme, --map and --equations");
+    if (!o->have_order)
+        o->order = 4;
+    if (o->order < 2 || o->order > ERRORS_MAX_ORDER)
+        return cli_usage(cmd, "--order must be between 2 and %d, not %d", ERRORS_MAX_ORDER,
+                         o->order);
+    if (r->correct_s != NULL) {
+        char *end;
+        long v = strtol(r->correct_s, &end, 10);
+        if (*r->correct_s == '\0' || *end != '\0')
+            return cli_usage(cmd, "--correct wants a whole number, not '%s'", r->correct_s);
+        if (v < 2 || v > o->order)
+            return cli_usage(cmd, "--correct must be between 2 and the order %d, not %s",
+                             o->order, r->correct_s);
+        r->correct = (int)v;
+    }
+    r->invdeg = 2;
+    if (r->invdeg_s != NULL) {
+        char *end;
+        long v = strtol(r->invdeg_s, &end, 10);
+        if (*r->invdeg_s == '\0' || *end != '\0' || v < 0 || v > 8)
+            return cli_usage(cmd, "--invariants-degree wants a whole number 0..8, not '%s'",
+                             r->invdeg_s);
+        r->invdeg = (int)v;
+    }
+    return -1;
+}
+
+/* Everything computed, kept for the writers. */
+typedef struct result {
+    hl_system *sys;
+    hl_scheme *s;
+    int N, m, n;
+    const char **names;  /* phase variable names, 2N */
+    hl_series *psi;      /* expansion to O(D^(n+1)) */
+    hl_errors e;
+    hl_errfield F;
+    int have_F;
+    int closed;          /* explicit: map and K in closed form */
+    hl_alg *map, *K;
+    hl_series *Ks;       /* K's Taylor series */
+    int correct;
+    hl_series *cpsi;     /* corrected series */
+    hl_alg *cmap;        /* corrected map (closed) */
+    hl_errors ce;
+    hl_errfield cF;
+    int have_cF, have_ce;
+    int tried_tau, tau_ok, tau_fail; /* part 4: psi = exp(tau(D) g)? */
+    hl_series tau;
+    int tau_closed, have_D2, tau_series_only;
+    hl_alg *tc;                      /* tau, tan(tau/2), D2 in closed form */
+    int invdeg, inv_poly_app, inv_dar_app, ninv_poly, ninv_dar; /* part 5 */
+    hl_alg *inv_poly, *inv_dar;
+    int nmod;                        /* part 6: f_1..f_nmod */
+    hl_alg *mf, *mh;                 /* fields ((nmod+1)*m), Hamiltonians (nmod+1) */
+    int mh_all;                      /* every f_j Hamiltonian with h found */
+} result;
+
+static hl_series *series_vec(int m, hl_alg_ctx *ctx)
+{
+    hl_series *s = hl_xmalloc((size_t)m * sizeof *s);
+    for (int i = 0; i < m; i++)
+        hl_series_init(&s[i], 0, ctx);
+    return s;
+}
+
+static void series_vec_free(hl_series *s, int m, hl_alg_ctx *ctx)
+{
+    if (s == NULL)
+        return;
+    for (int i = 0; i < m; i++)
+        hl_series_clear(&s[i], ctx);
+    free(s);
+}
+
+static int analyse(hl_errors *e, hl_errfield *F, int *have_F, const hl_series *psi,
+                   result *R, hl_error *err)
+{
+    int st = hl_errors_compute(e, psi, R->sys, R->n, err);
+    if (st == HL_OK && !e->agree)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                            "internal error: v_%d computed two ways (expansion, K(D)) disagree",
+                            e->disagree_k);
+    if (st == HL_OK && e->leading) {
+        st = hl_errfield_classify(F, hl_errors_field(e, e->leading), R->sys, err);
+        *have_F = st == HL_OK;
+    }
+    return st;
+}
+
+static int compute(result *R, const err_opts *r, const cli_opts *o, hl_error *err)
+{
+    hl_system *sys = R->sys;
+    hl_alg_ctx *ctx = hl_system_ctx(sys);
+    int st;
+    if (o->map != NULL) {
+        if ((st = hl_scheme_from_map(&R->s, o->map, sys, err)) != HL_OK)
+            hl_error_prefix(err, "in --map");
+    } else if (r->equations != NULL) {
+        if ((st = hl_scheme_from_equations(&R->s, r->equations, sys, err)) != HL_OK)
+            hl_error_prefix(err, "in --equations");
+    } else
+        st = hl_scheme_new(&R->s, r->scheme, 0, sys, err);
+    if (st != HL_OK)
+        return st;
+    R->psi = series_vec(R->m, ctx);
+    if ((st = hl_scheme_expand(R->psi, R->s, R->n + 1, err)) != HL_OK)
+        return st;
+    if ((st = analyse(&R->e, &R->F, &R->have_F, R->psi, R, err)) != HL_OK)
+        return st;
+    R->Ks = series_vec(R->m, ctx);
+    int vars[2 * 64], vD = hl_system_var_D(sys);
+    for (int i = 0; i < R->m; i++)
+        vars[i] = i;
+    if ((st = hl_series_scheme_K(R->Ks, R->m, R->psi, vars, vD, ctx, err)) != HL_OK)
+        return st;
+    if (R->s->all_explicit && R->s->nint == 0) {
+        R->map = hl_alg_vec_new(R->m, ctx);
+        R->K = hl_alg_vec_new(R->m, ctx);
+        if ((st = hl_errors_scheme_map(R->map, R->s, err)) != HL_OK ||
+            (st = hl_errors_K_closed(R->K, R->map, sys, err)) != HL_OK)
+            return st;
+        R->closed = 1;
+    }
+    if (R->have_F && R->invdeg > 0) {
+        const hl_alg *v = hl_errors_field(&R->e, R->e.leading);
+        if ((st = hl_field_poly_invariants(&R->inv_poly, &R->ninv_poly, &R->inv_poly_app, v,
+                                           R->invdeg, sys, err)) != HL_OK ||
+            (st = hl_field_darboux_invariants(&R->inv_dar, &R->ninv_dar, &R->inv_dar_app, v,
+                                              R->invdeg, sys, err)) != HL_OK)
+            return st;
+    }
+    R->nmod = R->n < MOD_MAX ? R->n : MOD_MAX;
+    R->mf = hl_alg_vec_new((R->nmod + 1) * R->m, ctx);
+    R->mh = hl_alg_vec_new(R->nmod + 1, ctx);
+    if ((st = hl_modified_field(R->mf, R->psi, sys, R->nmod, err)) != HL_OK)
+        return st;
+    R->mh_all = 1;
+    hl_alg_set(&R->mh[1], hl_system_H(sys), ctx);
+    for (int j = 2; j <= R->nmod && R->mh_all; j++) {
+        hl_errfield G;
+        if ((st = hl_errfield_classify(&G, R->mf + j * R->m, sys, err)) != HL_OK) {
+            hl_errfield_clear(&G, sys);
+            return st;
+        }
+        R->mh_all = G.hamiltonian && G.have_h;
+        hl_alg_swap(&R->mh[j], &G.h, ctx);
+        hl_errfield_clear(&G, sys);
+    }
+    if (R->e.leading == 0 ||
+        (R->have_F && R->F.kind == HL_ERRFIELD_TIME_SHIFT)) { /* maybe a time translation */
+        R->tried_tau = 1;
+        hl_series_init(&R->tau, 0, ctx);
+        R->tc = hl_alg_vec_new(3, ctx);
+        if ((st = hl_errors_time_series(&R->tau, &R->tau_ok, &R->tau_fail, R->psi, sys, R->n,
+                                        err)) != HL_OK)
+            return st;
+        if (R->closed && (st = hl_errors_time_closed(&R->tc[0], &R->tc[1], &R->tau_closed,
+                                                     &R->tc[2], &R->have_D2, R->map, sys,
+                                                     err)) != HL_OK)
+            return st;
+        if (!R->closed) { /* implicit: identify tau from the series */
+            if ((st = hl_errors_time_closed_series(&R->tc[0], &R->tc[1], &R->tau_closed,
+                                                   &R->tc[2], R->psi, sys, R->n, err)) != HL_OK)
+                return st;
+            R->have_D2 = R->tau_series_only = R->tau_closed;
+        }
+    }
+    if (R->correct) {
+        R->cpsi = series_vec(R->m, ctx);
+        hl_errors_correct_series(R->cpsi, R->psi, &R->e, R->correct, sys);
+        if (R->closed) {
+            R->cmap = hl_alg_vec_new(R->m, ctx);
+            for (int i = 0; i < R->m; i++)
+                hl_alg_set(&R->cmap[i], &R->map[i], ctx);
+            hl_errors_correct_map(R->cmap, &R->e, R->correct, sys);
+        }
+        R->have_ce = 1;
+        st = analyse(&R->ce, &R->cF, &R->have_cF, R->cpsi, R, err);
+    }
+    return st;
+}
+
+static void result_free(result *R)
+{
+    if (R->sys == NULL)
+        return;
+    hl_alg_ctx *ctx = hl_system_ctx(R->sys);
+    series_vec_free(R->psi, R->m, ctx);
+    series_vec_free(R->Ks, R->m, ctx);
+    series_vec_free(R->cpsi, R->m, ctx);
+    if (R->e.v != NULL || R->e.vK != NULL)
+        hl_errors_clear(&R->e, R->sys);
+    if (R->have_ce)
+        hl_errors_clear(&R->ce, R->sys);
+    if (R->have_F)
+        hl_errfield_clear(&R->F, R->sys);
+    if (R->have_cF)
+        hl_errfield_clear(&R->cF, R->sys);
+    hl_alg_vec_free(R->map, R->m, ctx);
+    hl_alg_vec_free(R->K, R->m, ctx);
+    hl_alg_vec_free(R->cmap, R->m, ctx);
+    hl_alg_vec_free(R->inv_poly, R->ninv_poly, ctx);
+    if (R->mf != NULL) {
+        hl_alg_vec_free(R->mf, (R->nmod + 1) * R->m, ctx);
+        hl_alg_vec_free(R->mh, R->nmod + 1, ctx);
+    }
+    hl_alg_vec_free(R->inv_dar, R->ninv_dar, ctx);
+    if (R->tried_tau) {
+        hl_series_clear(&R->tau, ctx);
+        hl_alg_vec_free(R->tc, 3, ctx);
+    }
+    hl_scheme_free(R->s);
+    free(R->names);
+}
+
+static const char *kind_name(hl_errfield_kind k)
+{
+    static const char *const n[] = {"zero", "time_shift", "parallel", "scaling", "hamiltonian",
+                                    "general"};
+    return n[k];
+}
+
+/* ---- text and LaTeX --------------------------------------------------- */
+
+static void put_alg(hl_buf *out, const hl_alg *a, result *R, hl_style st)
+{
+    char *s = hl_format_alg(a, hl_system_ctx(R->sys), hl_system_pool(R->sys), st);
+    hl_buf_puts(out, s);
+    free(s);
+}
+
+static void put_field(hl_buf *out, const hl_alg *v, result *R, hl_style st)
+{
+    char *s = hl_format_vector_field(R->m, R->names, v, hl_system_ctx(R->sys),
+                                     hl_system_pool(R->sys), st);
+    hl_buf_puts(out, s);
+    free(s);
+}
+
+static void put_map(hl_buf *out, const char *title, const hl_alg *img, result *R, hl_style st)
+{
+    hl_buf_printf(out, "%s\n", title);
+    for (int i = 0; i < R->m; i++) {
+        char *nm = cli_image_name(R->sys, i);
+        hl_buf_printf(out, "  %s = ", nm);
+        put_alg(out, &img[i], R, st);
+        hl_buf_puts(out, "\n");
+        free(nm);
+    }
+}
+
+static void put_classification(hl_buf *out, const hl_errors *e, const hl_errfield *F, result *R,
+                               hl_style st)
+{
+    int k = e->leading;
+    hl_buf_printf(out, "leading error v_%d: ", k);
+    switch (F->kind) {
+    case HL_ERRFIELD_TIME_SHIFT:
+        hl_buf_puts(out, "c·g with c = ");
+        put_alg(out, &F->lambda, R, st);
+        hl_buf_printf(out, ", a pure time translation: the point stays on its trajectory, "
+                           "c·D^%d/%d! ahead in time\n", k, k);
+        break;
+    case HL_ERRFIELD_PARALLEL:
+        hl_buf_puts(out, "parallel to g: v = λ(z)·g with λ = ");
+        put_alg(out, &F->lambda, R, st);
+        hl_buf_puts(out, "\n");
+        break;
+    case HL_ERRFIELD_SCALING:
+        hl_buf_puts(out, "a scaling: v = Σ c_j z_j ∂/∂z_j with");
+        for (int i = 0; i < R->m; i++) {
+            hl_buf_printf(out, "%s c_%s = ", i ? "," : "", R->names[i]);
+            put_alg(out, &F->scale[i], R, st);
+        }
+        hl_buf_puts(out, "\n");
+        break;
+    case HL_ERRFIELD_HAMILTONIAN:
+        hl_buf_puts(out, "a Hamiltonian vector field\n");
+        break;
+    default:
+        hl_buf_puts(out, "general (not parallel to g, not a scaling, not Hamiltonian)\n");
+    }
+    if (F->hamiltonian && F->have_h) {
+        hl_buf_puts(out, "  Hamiltonian: yes, v = J∇h with h = ");
+        put_alg(out, &F->h, R, st);
+        hl_buf_puts(out, "\n");
+    } else if (F->hamiltonian)
+        hl_buf_puts(out, "  Hamiltonian: yes; h not found in closed form\n");
+    else
+        hl_buf_puts(out, "  Hamiltonian: no\n");
+}
+
+static void put_order(hl_buf *out, const hl_errors *e)
+{
+    if (e->leading)
+        hl_buf_printf(out, "order: %d (leading error v_%d)\n", e->order, e->leading);
+    else
+        hl_buf_printf(out, "no error up to order %d (exact to the order computed)\n", e->n);
+}
+
+/* tau(D) and W(D) = tau(D) - D as series: tau's coefficients, shifted. */
+static char *tau_text(result *R, int W, hl_style st)
+{
+    hl_alg_ctx *ctx = hl_system_ctx(R->sys);
+    hl_alg *c = hl_alg_vec_new(R->tau.n, ctx);
+    for (int k = 0; k < R->tau.n; k++)
+        if (!(W && k == 1))
+            hl_alg_set(&c[k], &R->tau.c[k], ctx);
+    char *s = hl_format_series(c, R->tau.n - 1, "D", 0, ctx, hl_system_pool(R->sys), st);
+    hl_alg_vec_free(c, R->tau.n, ctx);
+    return s;
+}
+
+static void put_time(hl_buf *out, result *R, hl_style st)
+{
+    if (!R->tau_ok) {
+        hl_buf_printf(out, "time reparametrisation: none (the D^%d term is not a constant "
+                           "multiple of g z: not a pure time translation)\n", R->tau_fail);
+        return;
+    }
+    char *t = tau_text(R, 0, st), *w = tau_text(R, 1, st);
+    hl_buf_printf(out, "time reparametrisation: psi_D = exp(tau(D) g) + O(D^%d)\n", R->n + 1);
+    hl_buf_printf(out, "  tau(D) = %s + O(D^%d)\n  W(D) = tau(D) - D = %s + O(D^%d)\n", t,
+                  R->n + 1, w, R->n + 1);
+    free(t);
+    free(w);
+    if (R->tau_closed) {
+        hl_buf_puts(out, "  closed form: tan(tau/2) = M12/(1 + M11) = ");
+        put_alg(out, &R->tc[1], R, st);
+        hl_buf_puts(out, ", tau = ");
+        put_alg(out, &R->tc[0], R, st);
+        if (R->tau_series_only)
+            hl_buf_printf(out, " (identified from the series to O(D^%d), not proved)", R->n + 1);
+        hl_buf_puts(out, "\n");
+    }
+    if (R->have_D2) {
+        hl_buf_puts(out, "  two steps of D are one step of D' = ");
+        put_alg(out, &R->tc[2], R, st);
+        hl_buf_puts(out, "\n");
+    }
+}
+
+static void put_invariants(hl_buf *out, result *R, hl_style st)
+{
+    int k = R->e.leading;
+    if (!R->inv_poly_app) {
+        hl_buf_printf(out, "invariants of v_%d: not a polynomial field over Q, not searched\n", k);
+        return;
+    }
+    hl_buf_printf(out, "polynomial invariants of v_%d of degree <= %d:", k, R->invdeg);
+    for (int i = 0; i < R->ninv_poly; i++) {
+        hl_buf_puts(out, i ? ", " : " ");
+        put_alg(out, &R->inv_poly[i], R, st);
+    }
+    hl_buf_puts(out, R->ninv_poly ? " (each checked: v(phi) = 0)\n" : " none\n");
+    if (R->inv_dar_app) {
+        hl_buf_printf(out, "rational invariants of v_%d (ratios of Darboux polynomials):", k);
+        for (int i = 0; i < R->ninv_dar; i++) {
+            hl_buf_puts(out, i ? ", " : " ");
+            put_alg(out, &R->inv_dar[i], R, st);
+        }
+        hl_buf_puts(out, R->ninv_dar ? " (each checked: v(phi) = 0)\n" : " none found\n");
+    }
+}
+
+static void put_modified(hl_buf *out, result *R, hl_style st)
+{
+    hl_buf_printf(out, "modified vector field: exp(D f~) = psi_D + O(D^%d), "
+                       "f~ = f_1 + D f_2 + ... (f_1 = g):\n", R->nmod + 1);
+    for (int j = 2; j <= R->nmod; j++) {
+        hl_buf_printf(out, "  f_%d = ", j);
+        put_field(out, R->mf + j * R->m, R, st);
+        hl_buf_puts(out, "\n");
+    }
+    if (!R->mh_all) {
+        hl_buf_puts(out, "  modified Hamiltonian: not found (some f_j is not Hamiltonian, "
+                         "or its h is not polynomial)\n");
+        return;
+    }
+    hl_alg_ctx *ctx = hl_system_ctx(R->sys);
+    hl_alg *c = hl_alg_vec_new(R->nmod, ctx);
+    for (int j = 1; j <= R->nmod; j++)
+        hl_alg_set(&c[j - 1], &R->mh[j], ctx);
+    char *s = hl_format_series(c, R->nmod - 1, "D", 0, ctx, hl_system_pool(R->sys), st);
+    hl_buf_printf(out, "  modified Hamiltonian: H~ = %s + O(D^%d)\n", s, R->nmod);
+    free(s);
+    hl_alg_vec_free(c, R->nmod, ctx);
+}
+
+static void write_text(hl_buf *out, result *R, const err_opts *r, const cli_opts *o)
+{
+    int latex = o->format == CLI_LATEX;
+    hl_style st = latex ? HL_STYLE_LATEX : HL_STYLE_TEXT;
+    const char *pre = latex ? "% " : "";
+    hl_buf_printf(out, "%sscheme: %s\n", pre,
+                  r->scheme ? r->scheme : o->map ? o->map : r->equations);
+    hl_buf_printf(out, "%sH = ", pre);
+    put_alg(out, hl_system_H(R->sys), R, st);
+    hl_buf_puts(out, "\n");
+    if (R->closed)
+        put_map(out, "map:", R->map, R, st);
+    for (int k = 2; k <= R->n; k++) {
+        hl_buf_printf(out, latex ? "v_{%d} = " : "v_%d = ", k);
+        put_field(out, hl_errors_field(&R->e, k), R, st);
+        hl_buf_puts(out, "\n");
+    }
+    hl_buf_printf(out, "%sv_k computed two ways: agree\n", pre);
+    put_order(out, &R->e);
+    if (R->have_F)
+        put_classification(out, &R->e, &R->F, R, st);
+    if (R->closed) {
+        long len = 0;
+        for (int i = 0; i < R->m; i++)
+            len += hl_alg_length(&R->K[i], hl_system_ctx(R->sys));
+        hl_buf_puts(out, "K(D) = psi_{-D} o d/dD psi_D in closed form:");
+        if (len > K_PRINT_MAX)
+            hl_buf_printf(out, " %ld terms, not printed (see --json)\n", len);
+        else {
+            hl_buf_puts(out, "\n");
+            for (int i = 0; i < R->m; i++) {
+                hl_buf_printf(out, "  K_%s = ", R->names[i]);
+                put_alg(out, &R->K[i], R, st);
+                hl_buf_puts(out, "\n");
+            }
+        }
+    }
+    hl_buf_printf(out, "K(D) series to O(D^%d):\n", R->n);
+    for (int i = 0; i < R->m; i++) {
+        char *s = hl_format_series(R->Ks[i].c, R->Ks[i].n - 1, "D", 0, hl_system_ctx(R->sys),
+                                   hl_system_pool(R->sys), st);
+        hl_buf_printf(out, "  K_%s = %s\n", R->names[i], s);
+        free(s);
+    }
+    if (R->have_F && R->invdeg > 0)
+        put_invariants(out, R, st);
+    if (R->tried_tau)
+        put_time(out, R, st);
+    put_modified(out, R, st);
+    if (R->correct) {
+        hl_buf_printf(out, "corrected scheme (v_2..v_%d subtracted):\n", R->correct);
+        if (R->cmap != NULL)
+            put_map(out, "corrected map:", R->cmap, R, st);
+        else
+            hl_buf_printf(out, "  psi_D(z) - sum_{k=2}^{%d} D^k/k! v_k(z)\n", R->correct);
+        put_order(out, &R->ce);
+        if (R->have_cF)
+            put_classification(out, &R->ce, &R->cF, R, st);
+    }
+    cli_numeric_note(out, R->sys, o->format);
+}
+
+/* ---- JSON --------------------------------------------------------------- */
+
+static void json_alg(hl_json *j, const char *key, const hl_alg *a, result *R)
+{
+    char *s = hl_format_alg(a, hl_system_ctx(R->sys), hl_system_pool(R->sys), HL_STYLE_SYMPY);
+    hl_json_kv_string(j, key, s);
+    free(s);
+}
+
+static void json_field(hl_json *j, const char *key, const hl_alg *v, result *R)
+{
+    hl_json_key(j, key);
+    hl_json_vector_field(j, R->m, R->names, v, hl_system_ctx(R->sys), hl_system_pool(R->sys),
+                         HL_STYLE_SYMPY);
+}
+
+static void json_analysis(hl_json *j, const hl_errors *e, const hl_errfield *F, int have_F,
+                          result *R)
+{
+    hl_json_key(j, "fields");
+    hl_json_array_begin(j);
+    for (int k = 2; k <= e->n; k++) {
+        hl_json_object_begin(j);
+        hl_json_kv_int(j, "k", k);
+        json_field(j, "v", hl_errors_field(e, k), R);
+        hl_json_object_end(j);
+    }
+    hl_json_array_end(j);
+    hl_json_kv_bool(j, "two_ways_agree", e->agree);
+    hl_json_kv_int(j, "order", e->order);
+    hl_json_kv_bool(j, "exact_to_order_computed", e->leading == 0);
+    hl_json_key(j, "leading");
+    if (!have_F) {
+        hl_json_null(j);
+        return;
+    }
+    hl_json_object_begin(j);
+    hl_json_kv_int(j, "k", e->leading);
+    hl_json_kv_string(j, "kind", kind_name(F->kind));
+    if (F->kind == HL_ERRFIELD_TIME_SHIFT || F->kind == HL_ERRFIELD_PARALLEL)
+        json_alg(j, "lambda", &F->lambda, R);
+    if (F->kind == HL_ERRFIELD_SCALING)
+        json_field(j, "scale", F->scale, R);
+    hl_json_kv_bool(j, "hamiltonian", F->hamiltonian);
+    if (F->hamiltonian && F->have_h)
+        json_alg(j, "h", &F->h, R);
+    else {
+        hl_json_key(j, "h");
+        hl_json_null(j);
+    }
+    hl_json_object_end(j);
+}
+
+static void write_json(hl_buf *out, result *R, const err_opts *r, const cli_opts *o)
+{
+    hl_json j;
+    hl_json_init_buf(&j, out);
+    hl_json_object_begin(&j);
+    hl_json_kv_string(&j, "command", "errors");
+    cli_json_system(&j, R->sys);
+    hl_json_key(&j, "scheme");
+    hl_json_object_begin(&j);
+    hl_json_kv_string(&j, "source", r->scheme ? "catalog" : o->map ? "map" : "equations");
+    hl_json_kv_string(&j, "name", R->s->name);
+    hl_json_kv_string(&j, "input", r->scheme ? r->scheme : o->map ? o->map : r->equations);
+    hl_json_kv_bool(&j, "explicit", R->closed);
+    hl_json_object_end(&j);
+    hl_json_kv_int(&j, "order_computed", R->n);
+    if (R->closed)
+        json_field(&j, "map", R->map, R);
+    json_analysis(&j, &R->e, &R->F, R->have_F, R);
+    if (R->closed)
+        json_field(&j, "K", R->K, R);
+    hl_json_key(&j, "K_coefficients");
+    hl_json_array_begin(&j);
+    hl_alg *c = hl_alg_vec_new(R->m, hl_system_ctx(R->sys));
+    for (int k = 0; k < R->n; k++) {
+        for (int i = 0; i < R->m; i++)
+            hl_alg_set(&c[i], &R->Ks[i].c[k], hl_system_ctx(R->sys));
+        hl_json_vector_field(&j, R->m, R->names, c, hl_system_ctx(R->sys),
+                             hl_system_pool(R->sys), HL_STYLE_SYMPY);
+    }
+    hl_alg_vec_free(c, R->m, hl_system_ctx(R->sys));
+    hl_json_array_end(&j);
+    hl_json_key(&j, "invariants");
+    if (R->have_F && R->invdeg > 0 && R->inv_poly_app) {
+        hl_json_object_begin(&j);
+        hl_json_kv_int(&j, "degree", R->invdeg);
+        hl_json_key(&j, "polynomial");
+        hl_json_array_begin(&j);
+        for (int i = 0; i < R->ninv_poly; i++) {
+            char *t = hl_format_alg(&R->inv_poly[i], hl_system_ctx(R->sys),
+                                    hl_system_pool(R->sys), HL_STYLE_SYMPY);
+            hl_json_string(&j, t);
+            free(t);
+        }
+        hl_json_array_end(&j);
+        hl_json_key(&j, "rational");
+        if (R->inv_dar_app) {
+            hl_json_array_begin(&j);
+            for (int i = 0; i < R->ninv_dar; i++) {
+                char *t = hl_format_alg(&R->inv_dar[i], hl_system_ctx(R->sys),
+                                        hl_system_pool(R->sys), HL_STYLE_SYMPY);
+                hl_json_string(&j, t);
+                free(t);
+            }
+            hl_json_array_end(&j);
+        } else
+            hl_json_null(&j);
+        hl_json_object_end(&j);
+    } else
+        hl_json_null(&j);
+    hl_json_key(&j, "modified");
+    hl_json_object_begin(&j);
+    hl_json_kv_int(&j, "terms", R->nmod);
+    hl_json_key(&j, "fields");
+    hl_json_array_begin(&j);
+    for (int k = 1; k <= R->nmod; k++)
+        hl_json_vector_field(&j, R->m, R->names, R->mf + k * R->m, hl_system_ctx(R->sys),
+                             hl_system_pool(R->sys), HL_STYLE_SYMPY);
+    hl_json_array_end(&j);
+    hl_json_key(&j, "hamiltonians");
+    if (R->mh_all) {
+        hl_json_array_begin(&j);
+        for (int k = 1; k <= R->nmod; k++) {
+            char *t = hl_format_alg(&R->mh[k], hl_system_ctx(R->sys), hl_system_pool(R->sys),
+                                    HL_STYLE_SYMPY);
+            hl_json_string(&j, t);
+            free(t);
+        }
+        hl_json_array_end(&j);
+    } else
+        hl_json_null(&j);
+    hl_json_object_end(&j);
+    hl_json_key(&j, "time");
+    if (R->tried_tau) {
+        hl_json_object_begin(&j);
+        hl_json_kv_bool(&j, "pure_time_translation", R->tau_ok);
+        hl_json_key(&j, "fails_at");
+        if (R->tau_ok)
+            hl_json_null(&j);
+        else
+            hl_json_int(&j, R->tau_fail);
+        if (R->tau_ok) {
+            char *t = tau_text(R, 0, HL_STYLE_SYMPY), *w = tau_text(R, 1, HL_STYLE_SYMPY);
+            hl_json_kv_string(&j, "tau_series", t);
+            hl_json_kv_string(&j, "W_series", w);
+            free(t);
+            free(w);
+        }
+        if (R->tau_closed) {
+            json_alg(&j, "tau", &R->tc[0], R);
+            json_alg(&j, "tan_half_tau", &R->tc[1], R);
+        }
+        if (R->have_D2)
+            json_alg(&j, "double_step", &R->tc[2], R);
+        hl_json_kv_bool(&j, "closed_form_from_series", R->tau_series_only);
+        hl_json_object_end(&j);
+    } else
+        hl_json_null(&j);
+    hl_json_key(&j, "corrected");
+    if (R->correct) {
+        hl_json_object_begin(&j);
+        hl_json_kv_int(&j, "subtracted_up_to", R->correct);
+        if (R->cmap != NULL)
+            json_field(&j, "map", R->cmap, R);
+        json_analysis(&j, &R->ce, &R->cF, R->have_cF, R);
+        hl_json_object_end(&j);
+    } else
+        hl_json_null(&j);
+    hl_json_kv_bool(&j, "numeric_zero_test", hl_alg_ctx_numeric_used(hl_system_ctx(R->sys)));
+    hl_json_object_end(&j);
+    hl_json_finish(&j);
+}
+
+int cmd_errors(int argc, char **argv)
+{
+    const cli_command *cmd = cli_find("errors");
+    err_opts r;
+    cli_opts o;
+    result R;
+    memset(&r, 0, sizeof r);
+    memset(&o, 0, sizeof o);
+    memset(&R, 0, sizeof R);
+    char **av = hl_xmalloc((size_t)(argc + 1) * sizeof *av);
+    memcpy(av, argv, (size_t)argc * sizeof *av);
+    int ac = argc;
+    int rc = take_opts(&r, &ac, av, cmd);
+    if (rc < 0)
+        rc = cli_parse(&o, ac, av, CLI_OPT_H | CLI_OPT_MAP | CLI_OPT_ORDER, cmd);
+    if (rc < 0)
+        rc = check_opts(&r, &o, cmd);
+    if (rc < 0) {
+        rc = cli_system(&R.sys, &o, NULL);
+        rc = rc == CLI_OK ? -1 : rc;
+    }
+    if (rc < 0 && hl_system_ndof(R.sys) > 64) {
+        fprintf(stderr, "hamlie: error: errors handles at most 64 degrees of freedom\n");
+        rc = CLI_ERROR;
+    }
+    hl_error err;
+    hl_error_clear(&err);
+    if (rc < 0) {
+        R.N = hl_system_ndof(R.sys);
+        R.m = 2 * R.N;
+        R.n = o.order;
+        R.correct = r.correct;
+        R.invdeg = r.invdeg;
+        R.names = hl_xmalloc((size_t)R.m * sizeof *R.names);
+        for (int i = 0; i < R.m; i++)
+            R.names[i] = i < R.N ? hl_system_coord(R.sys, i) : hl_system_momentum(R.sys, i - R.N);
+        if (compute(&R, &r, &o, &err) != HL_OK)
+            rc = cli_fail(&err);
+    }
+    if (rc < 0) {
+        hl_buf out;
+        hl_buf_init(&out);
+        if (o.format == CLI_JSON)
+            write_json(&out, &R, &r, &o);
+        else
+            write_text(&out, &R, &r, &o);
+        rc = cli_emit(&out, CLI_OK);
+        hl_buf_clear(&out);
+    }
+    hl_system *sys = R.sys;
+    result_free(&R);
+    hl_system_free(sys);
+    cli_opts_clear(&o);
+    free(av);
+    return rc;
+}
