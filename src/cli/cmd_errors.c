@@ -353,6 +353,18 @@ static void put_map(hl_buf *out, const char *title, const hl_alg *img, result *R
     }
 }
 
+/* A time shift c·D^k/k! puts the point ahead of the flow when c > 0. */
+static const char *shift_direction(const hl_alg *c, result *R)
+{
+    fmpq_t q;
+    fmpq_init(q);
+    const char *dir = "shifted (by the sign of c)";
+    if (hl_alg_is_fmpq(c, q, hl_system_ctx(R->sys)))
+        dir = fmpq_sgn(q) > 0 ? "ahead" : "behind";
+    fmpq_clear(q);
+    return dir;
+}
+
 static void put_classification(hl_buf *out, const hl_errors *e, const hl_errfield *F, result *R,
                                hl_style st)
 {
@@ -363,7 +375,7 @@ static void put_classification(hl_buf *out, const hl_errors *e, const hl_errfiel
         hl_buf_puts(out, "c·g with c = ");
         put_alg(out, &F->lambda, R, st);
         hl_buf_printf(out, ", a pure time translation: the point stays on its trajectory, "
-                           "c·D^%d/%d! ahead in time\n", k, k);
+                           "|c|·D^%d/%d! %s in time\n", k, k, shift_direction(&F->lambda, R));
         break;
     case HL_ERRFIELD_PARALLEL:
         hl_buf_puts(out, "parallel to g: v = λ(z)·g with λ = ");

@@ -194,6 +194,17 @@ static const hl_expr *series_term(const fmpq_t r, int k, const hl_expr *var,
     return e;
 }
 
+/* -t with the minus on the leftmost factor: -D^3/12, not -(D^3/12) (unary
+ * minus binds tighter than * and /, so this is the same value). */
+static const hl_expr *negate_leftmost(const hl_expr *t, hl_pool *pool)
+{
+    if (t->kind == HL_MUL)
+        return hl_mul(pool, negate_leftmost(t->a, pool), t->b);
+    if (t->kind == HL_DIV)
+        return hl_div(pool, negate_leftmost(t->a, pool), t->b);
+    return hl_neg(pool, t);
+}
+
 char *hl_format_series(const hl_alg *terms, int order, const char *var, int factorial,
                        hl_alg_ctx *ctx, hl_pool *pool, hl_style style)
 {
@@ -216,7 +227,7 @@ char *hl_format_series(const hl_alg *terms, int order, const char *var, int fact
         const hl_expr *t = series_term(r, k, v, rest, pool);
         int neg = fmpq_sgn(r) < 0;
         if (sum == NULL)
-            sum = neg ? hl_neg(pool, t) : t;
+            sum = neg ? negate_leftmost(t, pool) : t;
         else
             sum = neg ? hl_sub(pool, sum, t) : hl_add(pool, sum, t);
     }
