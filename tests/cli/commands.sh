@@ -5,62 +5,7 @@
 # usage (from the repo root): bash tests/cli/commands.sh path/to/hamlie
 set -u
 HAMLIE=${1:?usage: commands.sh path/to/hamlie}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
-
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-
-# run WANT_RC args...: output in $tmp/out, $tmp/err
-run() {
-    local want=$1
-    shift
-    "$HAMLIE" "$@" >"$tmp/out" 2>"$tmp/err"
-    local rc=$?
-    if [ "$rc" -eq "$want" ]; then ok; else
-        bad "hamlie $* exited $rc, want $want"; sed 's/^/    /' "$tmp/err" >&2
-    fi
-}
-
-has_line() {
-    if grep -qxF -- "$1" "$tmp/out"; then ok; else
-        bad "no line '$1' in the output of the last command:"; sed 's/^/    /' "$tmp/out" >&2
-    fi
-}
-
-has_text() {
-    if grep -qF -- "$1" "$tmp/out"; then ok; else
-        bad "no '$1' in the output of the last command:"; sed 's/^/    /' "$tmp/out" >&2
-    fi
-}
-
-# py CODE: run python with `d` = the JSON output of the last command and
-# `S(expr)` = sympify with the system's symbols; CODE asserts.
-py() {
-    if python3 - "$tmp/out" "$1" <<'PYEOF' >"$tmp/py" 2>&1; then ok; else bad "python check: $1"; sed 's/^/    /' "$tmp/py" >&2; fi
-import json, sys, sympy
-from sympy import Symbol, sympify, simplify, sin, cos, sqrt, Rational, factorial, series
-d = json.load(open(sys.argv[1]))
-sy = d["symbols"]
-names = sy["coordinates"] + sy["momenta"] + sy["parameters"] + [sy["step"]]
-loc = {n: Symbol(n) for n in names}
-def S(s):
-    return sympify(s, locals=loc)
-def same(a, b):
-    return simplify(S(a) - S(b)) == 0 if isinstance(a, str) or isinstance(b, str) else simplify(a - b) == 0
-def every_string(x):
-    if isinstance(x, dict):
-        for v in x.values(): yield from every_string(v)
-    elif isinstance(x, list):
-        for v in x: yield from every_string(v)
-    elif isinstance(x, str):
-        yield x
-assert isinstance(d["numeric_zero_test"], bool)
-exec(sys.argv[2])
-PYEOF
-}
+. "$(dirname "$0")/lib/harness.sh"
 
 # every expression in a JSON output must sympify
 ALL_PARSE='
@@ -242,5 +187,4 @@ has_text 'canonical'
 run 0 --version
 has_text 'hamlie '
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish

@@ -6,10 +6,7 @@
 # usage (from the repo root): bash tests/cli/errors.sh path/to/hamlie
 set -u
 HAMLIE=${1:?usage: errors.sh path/to/hamlie}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
+. "$(dirname "$0")/lib/harness.sh"
 KEPLER='(px^2+py^2)/2 - 1/sqrt(x^2+y^2)'
 
 # case NAME CARET_COLUMN|- MESSAGE_PIECE -- args...
@@ -71,5 +68,4 @@ case_ "option of another command" - "does not apply"    -- generator -H '(p^2+x^
 case_ "unknown command"         - "unknown command"     -- reproduce
 case_ "no command"              - "usage"               --
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish

@@ -8,28 +8,7 @@
 # usage (from the repo root): bash tests/cli/run.sh path/to/hamlie
 set -u
 HAMLIE=${1:?usage: run.sh path/to/hamlie}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*" >&2; }
-
-# run WANT_RC args...: stdout in $tmp/out, stderr in $tmp/err
-run() {
-    local want=$1
-    shift
-    "$HAMLIE" "$@" >"$tmp/out" 2>"$tmp/err"
-    local rc=$?
-    if [ "$rc" -eq "$want" ]; then ok; else
-        bad "hamlie $* exited $rc, want $want"; sed 's/^/    /' "$tmp/err" >&2
-    fi
-}
-err_has() {
-    if grep -qF -- "$1" "$tmp/err"; then ok; else
-        bad "no '$1' in stderr:"; sed 's/^/    /' "$tmp/err" >&2
-    fi
-}
+. "$(dirname "$0")/lib/harness.sh"  # its py is replaced below: CSV, not JSON
 # py FILE CODE: python with rows = the CSV's rows as floats, head = its header
 py() {
     if python3 - "$1" "$2" <<'PYEOF' >"$tmp/py" 2>&1; then ok; else bad "python check on $1: $2"; sed 's/^/    /' "$tmp/py" >&2; fi
@@ -184,5 +163,4 @@ fi
 run 0 help run
 if grep -q -- "--orders" "$tmp/out"; then ok; else bad "hamlie help run"; fi
 
-echo "run.sh: $pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish
