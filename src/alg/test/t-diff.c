@@ -5,23 +5,11 @@
 
 #include "hamlie/alg.h"
 #include "hl_test.h"
+#include "alg_test.h"
 
 #define PREC 256
 
-static hl_pool *pool;
-static hl_alg_ctx *ctx;
 
-static int rd(hl_alg *r, const char *s)
-{
-    const hl_expr *e;
-    hl_error err;
-    int st = hl_parse(&e, pool, s, &err);
-    if (st == HL_OK)
-        st = hl_alg_from_expr(r, e, ctx, &err);
-    if (st != HL_OK)
-        fprintf(stderr, "cannot read '%s': %s\n", s, err.msg);
-    return st;
-}
 
 static double eval_at(const hl_alg *a, const double *pt, int var, double h)
 {

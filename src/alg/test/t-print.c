@@ -9,24 +9,11 @@
 
 #include "hamlie/alg.h"
 #include "hl_test.h"
+#include "alg_test.h"
 
-static hl_pool *pool;
-static hl_alg_ctx *ctx;
 
 enum { X, Y, Q, P, PX, PY, D, NBASE };
 
-static int rd(hl_alg *r, const char *s)
-{
-    const hl_expr *e;
-    hl_error err;
-    hl_error_clear(&err);
-    int st = hl_parse(&e, pool, s, &err);
-    if (st == HL_OK)
-        st = hl_alg_from_expr(r, e, ctx, &err);
-    if (st != HL_OK)
-        fprintf(stderr, "cannot read '%s': %s\n", s, err.msg);
-    return st;
-}
 
 /* from_expr(to_expr(a)) has the same num and den as a, and so does the
  * element read back from the printed text; the text parses to the same DAG. */
