@@ -55,6 +55,20 @@ void cli_opts_clear(cli_opts *o);
 int cli_usage(const cli_command *cmd, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 
+/* A command's own options, taken out of argv before cli_parse sees the rest
+ * (kept in order): "--name VALUE" and "--name=VALUE", or just "--name" for a
+ * flag.  Values are taken whole, so "--dt -1" reaches the command's range
+ * check; nothing after "--" is taken.  found(arg, k, value) is called for
+ * each option own[k] met (value NULL for a flag).  Returns -1, or 2 after a
+ * usage message (an option without its value). */
+typedef struct cli_own {
+    const char *name;
+    int flag;
+} cli_own;
+int cli_take_own(int *argc, char **argv, const cli_own *own, int n,
+                 void (*found)(void *arg, int k, const char *value), void *arg,
+                 const cli_command *cmd);
+
 /* Print an error with its formula and a caret under err->pos; returns 2. */
 int cli_fail(const hl_error *err);
 

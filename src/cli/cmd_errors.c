@@ -53,43 +53,19 @@ typedef struct err_opts {
     int correct, invdeg;
 } err_opts;
 
+static void found_opt(void *arg, int k, const char *value)
+{
+    err_opts *r = arg;
+    const char **slot[] = {&r->scheme, &r->equations, &r->correct_s, &r->invdeg_s};
+    *slot[k] = value;
+}
+
+/* errors' own options; the rest goes to cli_parse. */
 static int take_opts(err_opts *r, int *argc, char **argv, const cli_command *cmd)
 {
-    static const char *const names[] = {"--scheme", "--equations", "--correct",
-                                        "--invariants-degree"};
-    const char **slot[] = {&r->scheme, &r->equations, &r->correct_s, &r->invdeg_s};
-    int n = 0;
-    for (int i = 0; i < *argc; i++) {
-        const char *a = argv[i];
-        if (i > 0 && strcmp(a, "--") == 0) {
-            while (i < *argc)
-                argv[n++] = argv[i++];
-            break;
-        }
-        int k = -1;
-        const char *val = NULL;
-        for (int j = 0; j < 4 && i > 0; j++) {
-            size_t l = strlen(names[j]);
-            if (strncmp(a, names[j], l) == 0 && (a[l] == '\0' || a[l] == '=')) {
-                k = j;
-                val = a[l] == '=' ? a + l + 1 : NULL;
-                break;
-            }
-        }
-        if (k < 0) {
-            argv[n++] = argv[i];
-            continue;
-        }
-        if (val == NULL) {
-            if (i + 1 >= *argc)
-                return cli_usage(cmd, "option '%s' needs a value", a);
-            val = argv[++i];
-        }
-        *slot[k] = val;
-    }
-    argv[n] = NULL;
-    *argc = n;
-    return -1;
+    static const cli_own own[] = {
+        {"--scheme", 0}, {"--equations", 0}, {"--correct", 0}, {"--invariants-degree", 0}};
+    return cli_take_own(argc, argv, own, 4, found_opt, r, cmd);
 }
 
 static int check_opts(err_opts *r, cli_opts *o, const cli_command *cmd)

@@ -72,57 +72,29 @@ typedef struct run_opts {
     int have_dt;
 } run_opts;
 
-/* Take run's own options out of argv (both "--dt 0.1" and "--dt=0.1");
- * the rest, in order, goes to cli_parse.  Returns -1, or 2 on a usage
- * error.  Values are taken whole, so "--dt -1" reaches the range check. */
+static void found_opt(void *arg, int k, const char *value)
+{
+    run_opts *r = arg;
+    const char **slot[] = {&r->scheme, &r->equations, &r->init, &r->out, &r->orders,
+                           &r->dt_s, &r->t_s, &r->tol_s, &r->every_s, &r->digits_s};
+    if (k < 10)
+        *slot[k] = value;
+    else if (k == 10) {
+        r->observe = hl_xrealloc(r->observe, (size_t)(r->nobserve + 1) * sizeof *r->observe);
+        r->observe[r->nobserve++] = value;
+    } else
+        r->no_ref = 1;
+}
+
+/* run's own options (in found_opt's order; --observe repeats); the rest,
+ * in order, goes to cli_parse. */
 static int take_opts(run_opts *r, int *argc, char **argv, const cli_command *cmd)
 {
-    static const char *const names[] = {"--scheme", "--equations", "--init", "--out",
-                                        "--orders", "--dt", "--t", "--tol", "--every",
-                                        "--digits", "--observe"};
-    int n = 0;
-    for (int i = 0; i < *argc; i++) {
-        const char *a = argv[i];
-        if (i > 0 && strcmp(a, "--") == 0) {
-            while (i < *argc)
-                argv[n++] = argv[i++];
-            break;
-        }
-        if (i > 0 && strcmp(a, "--no-reference") == 0) {
-            r->no_ref = 1;
-            continue;
-        }
-        int k = -1;
-        const char *val = NULL;
-        for (int j = 0; j < (int)(sizeof names / sizeof names[0]) && i > 0; j++) {
-            size_t l = strlen(names[j]);
-            if (strncmp(a, names[j], l) == 0 && (a[l] == '\0' || a[l] == '=')) {
-                k = j;
-                val = a[l] == '=' ? a + l + 1 : NULL;
-                break;
-            }
-        }
-        if (k < 0) {
-            argv[n++] = argv[i];
-            continue;
-        }
-        if (val == NULL) {
-            if (i + 1 >= *argc)
-                return cli_usage(cmd, "option '%s' needs a value", a);
-            val = argv[++i];
-        }
-        const char **slot[] = {&r->scheme, &r->equations, &r->init, &r->out, &r->orders,
-                               &r->dt_s, &r->t_s, &r->tol_s, &r->every_s, &r->digits_s};
-        if (k < 10)
-            *slot[k] = val;
-        else {
-            r->observe = hl_xrealloc(r->observe, (size_t)(r->nobserve + 1) * sizeof *r->observe);
-            r->observe[r->nobserve++] = val;
-        }
-    }
-    argv[n] = NULL;
-    *argc = n;
-    return -1;
+    static const cli_own own[] = {
+        {"--scheme", 0}, {"--equations", 0}, {"--init", 0},  {"--out", 0},
+        {"--orders", 0}, {"--dt", 0},        {"--t", 0},     {"--tol", 0},
+        {"--every", 0},  {"--digits", 0},    {"--observe", 0}, {"--no-reference", 1}};
+    return cli_take_own(argc, argv, own, (int)(sizeof own / sizeof own[0]), found_opt, r, cmd);
 }
 
 static int parse_double(double *v, const char *s, const char *opt, const cli_command *cmd)

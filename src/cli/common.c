@@ -139,3 +139,47 @@ char *cli_image_name(hl_system *sys, int a)
         *c = (char)toupper((unsigned char)*c);
     return s;
 }
+
+/* Which of own[] is argument a ("--dt" or "--dt=0.1")?  -1 if none. */
+static int own_index(const char *a, const cli_own *own, int n, const char **inline_value)
+{
+    for (int k = 0; k < n; k++) {
+        size_t l = strlen(own[k].name);
+        if (strncmp(a, own[k].name, l) != 0)
+            continue;
+        if (a[l] == '\0' || (a[l] == '=' && !own[k].flag)) {
+            *inline_value = a[l] == '=' ? a + l + 1 : NULL;
+            return k;
+        }
+    }
+    return -1;
+}
+
+int cli_take_own(int *argc, char **argv, const cli_own *own, int n,
+                 void (*found)(void *arg, int k, const char *value), void *arg,
+                 const cli_command *cmd)
+{
+    int kept = 0;
+    for (int i = 0; i < *argc; i++) {
+        const char *a = argv[i], *val = NULL;
+        if (i > 0 && strcmp(a, "--") == 0) {
+            while (i < *argc)
+                argv[kept++] = argv[i++];
+            break;
+        }
+        int k = i > 0 ? own_index(a, own, n, &val) : -1;
+        if (k < 0) {
+            argv[kept++] = argv[i];
+            continue;
+        }
+        if (!own[k].flag && val == NULL) {
+            if (i + 1 >= *argc)
+                return cli_usage(cmd, "option '%s' needs a value", a);
+            val = argv[++i];
+        }
+        found(arg, k, val);
+    }
+    argv[kept] = NULL;
+    *argc = kept;
+    return -1;
+}

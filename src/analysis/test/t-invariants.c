@@ -12,16 +12,7 @@
 #include "hamlie/analysis.h"
 #include "hamlie/scheme.h"
 #include "hl_test.h"
-
-static hl_system *make_system(const char *H)
-{
-    hl_system *sys;
-    hl_error err;
-    hl_system_spec spec = {H, NULL, NULL, NULL};
-    if (hl_system_new(&sys, &spec, &err) != HL_OK)
-        exit(2);
-    return sys;
-}
+#include "analysis_test.h"
 
 static int errors_of(hl_errors *e, hl_system *sys, const char *name, int n)
 {

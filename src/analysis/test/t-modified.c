@@ -29,18 +29,9 @@
 #include "hamlie/analysis.h"
 #include "hamlie/scheme.h"
 #include "hl_test.h"
+#include "analysis_test.h"
 
 #define NM 3
-
-static hl_system *make_system(const char *H)
-{
-    hl_system *sys;
-    hl_error err;
-    hl_system_spec spec = {H, NULL, NULL, NULL};
-    if (hl_system_new(&sys, &spec, &err) != HL_OK)
-        exit(2);
-    return sys;
-}
 
 /* mf of catalog scheme name, (NM+1)*m entries */
 static hl_alg *modified(hl_system *sys, const char *name)

@@ -10,6 +10,7 @@
 #include "hamlie/analysis.h"
 #include "hamlie/scheme.h"
 #include "hl_test.h"
+#include "analysis_test.h"
 
 typedef struct want {
     const char *name;
@@ -22,18 +23,6 @@ static const want table[] = {
     {"rk4", 4}, {"gauss2", 4}, {"gauss3", 6}, {"avf", 2}, {"gonzalez", 2},
     {"itoh-abe", 1}, {"lie", 4}, {"yoshida4", 4}, {"paper-euler", 1},
 };
-
-static hl_system *make_system(const char *H)
-{
-    hl_system *sys;
-    hl_error err;
-    hl_system_spec spec = {H, NULL, NULL, NULL};
-    if (hl_system_new(&sys, &spec, &err) != HL_OK) {
-        fprintf(stderr, "system: %s\n", err.msg);
-        exit(2);
-    }
-    return sys;
-}
 
 /* Errors of scheme `name` to order n; returns the measured order or -1. */
 static int measure(hl_system *sys, const char *name, int n, double *secs)

@@ -18,20 +18,9 @@
 #include "hamlie/analysis.h"
 #include "hamlie/scheme.h"
 #include "hl_test.h"
+#include "analysis_test.h"
 
 #define NORD 8
-
-static hl_system *make_system(const char *H)
-{
-    hl_system *sys;
-    hl_error err;
-    hl_system_spec spec = {H, NULL, NULL, NULL};
-    if (hl_system_new(&sys, &spec, &err) != HL_OK) {
-        fprintf(stderr, "system: %s\n", err.msg);
-        exit(2);
-    }
-    return sys;
-}
 
 static int run_errors(hl_errors *e, hl_system *sys, const char *name, int n)
 {

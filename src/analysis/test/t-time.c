@@ -13,18 +13,9 @@
 #include "hamlie/analysis.h"
 #include "hamlie/scheme.h"
 #include "hl_test.h"
+#include "analysis_test.h"
 
 #define NT 9
-
-static hl_system *make_system(const char *H)
-{
-    hl_system *sys;
-    hl_error err;
-    hl_system_spec spec = {H, NULL, NULL, NULL};
-    if (hl_system_new(&sys, &spec, &err) != HL_OK)
-        exit(2);
-    return sys;
-}
 
 /* tau series of a catalog scheme; *ok, *fail_k as hl_errors_time_series. */
 static int tau_of(hl_series *tau, int *ok, int *fail_k, hl_system *sys, const char *name)
