@@ -69,6 +69,24 @@ int cli_take_own(int *argc, char **argv, const cli_own *own, int n,
                  void (*found)(void *arg, int k, const char *value), void *arg,
                  const cli_command *cmd);
 
+/* The frame of a command that reads options, builds its system and prints
+ * one result: parse (--help and usage errors end there), the command's own
+ * usage checks, the system, the work, then the output written only on
+ * success.
+ *   check: -1 to go on, or the exit code after reporting (cli_usage); it
+ *          may fill extra[0..2] (NULL-terminated) with formulas that define
+ *          the variables when -H is not given (may be NULL: none).
+ *   body:  the work; output into out, *code = CLI_OK or CLI_FAILS (a
+ *          property checked and found false); an hl_status with err set
+ *          on failure (printed by cli_fail, exit 2). */
+typedef struct cli_spec {
+    const char *name;
+    unsigned accept; /* CLI_OPT_* */
+    int (*check)(const cli_opts *o, const cli_command *cmd, const char **extra);
+    int (*body)(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_error *err);
+} cli_spec;
+int cli_main(int argc, char **argv, const cli_spec *spec);
+
 /* Print an error with its formula and a caret under err->pos; returns 2. */
 int cli_fail(const hl_error *err);
 

@@ -3,8 +3,9 @@
 
 #include "cli/cli.h"
 
-static int run(hl_buf *out, hl_system *sys, const cli_opts *o, hl_error *err)
+static int run(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_error *err)
 {
+    (void)code; /* always CLI_OK: nothing is checked */
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     hl_pool *pool = hl_system_pool(sys);
     hl_alg a, b, r;
@@ -59,33 +60,19 @@ static int run(hl_buf *out, hl_system *sys, const cli_opts *o, hl_error *err)
     return st;
 }
 
+/* Without -H, A and B define the variables. */
+static int check(const cli_opts *o, const cli_command *cmd, const char **extra)
+{
+    if (o->nargs != 2)
+        return cli_usage(cmd, "bracket wants two functions A and B, got %d argument%s",
+                         o->nargs, o->nargs == 1 ? "" : "s");
+    extra[0] = o->args[0];
+    extra[1] = o->args[1];
+    return -1;
+}
+
 int cmd_bracket(int argc, char **argv)
 {
-    const cli_command *cmd = cli_find("bracket");
-    cli_opts o;
-    hl_system *sys = NULL;
-    hl_error err;
-    hl_buf out;
-    int rc = cli_parse(&o, argc, argv, CLI_OPT_H, cmd);
-
-    if (rc >= 0) { /* --help printed, or a usage error reported */
-        cli_opts_clear(&o);
-        return rc;
-    }
-    hl_error_clear(&err);
-    hl_buf_init(&out);
-    if (rc < 0 && o.nargs != 2)
-        rc = cli_usage(cmd, "bracket wants two functions A and B, got %d argument%s", o.nargs,
-                       o.nargs == 1 ? "" : "s");
-    if (rc < 0) {
-        const char *extra[] = {o.args[0], o.args[1], NULL};
-        /* With -H, H defines the system; without, A and B do. */
-        rc = cli_system(&sys, &o, o.H ? NULL : extra);
-    }
-    if (rc == CLI_OK)
-        rc = run(&out, sys, &o, &err) == HL_OK ? cli_emit(&out, CLI_OK) : cli_fail(&err);
-    hl_buf_clear(&out);
-    hl_system_free(sys);
-    cli_opts_clear(&o);
-    return rc;
+    static const cli_spec spec = {"bracket", CLI_OPT_H, check, run};
+    return cli_main(argc, argv, &spec);
 }

@@ -121,48 +121,36 @@ static void write_out(hl_buf *out, hl_system *sys, const hl_alg *img, hl_alg *br
     hl_alg_clear(&d, ctx);
 }
 
+/* Without -H, the map's right sides define the variables. */
+static int check(const cli_opts *o, const cli_command *cmd, const char **extra)
+{
+    if (o->map == NULL)
+        return cli_usage(cmd, "missing --map: say the images, e.g. --map 'X = x + D*p; P = p'");
+    if (o->nargs > 0)
+        return cli_usage(cmd, "unexpected argument '%s'", o->args[0]);
+    extra[0] = o->map;
+    return -1;
+}
+
+static int run(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_error *err)
+{
+    hl_alg_ctx *ctx = hl_system_ctx(sys);
+    int N2 = 2 * hl_system_ndof(sys), canonical = 0, st;
+    hl_alg *img = hl_alg_vec_new(N2, ctx), *br = hl_alg_vec_new(N2 * N2, ctx);
+    if ((st = hl_system_read_map(img, sys, o->map, err)) == HL_OK)
+        st = hl_check_canonical(&canonical, br, img, sys, err);
+    if (st == HL_OK) {
+        write_out(out, sys, img, br, canonical, o->format);
+        *code = canonical ? CLI_OK : CLI_FAILS;
+    } else if (err->src == o->map)
+        hl_error_prefix(err, "in --map");
+    hl_alg_vec_free(img, N2, ctx);
+    hl_alg_vec_free(br, N2 * N2, ctx);
+    return st;
+}
+
 int cmd_canonical(int argc, char **argv)
 {
-    const cli_command *cmd = cli_find("canonical");
-    cli_opts o;
-    hl_system *sys = NULL;
-    hl_error err;
-    hl_buf out;
-    int rc = cli_parse(&o, argc, argv, CLI_OPT_H | CLI_OPT_MAP, cmd);
-
-    if (rc >= 0) { /* --help printed, or a usage error reported */
-        cli_opts_clear(&o);
-        return rc;
-    }
-    hl_error_clear(&err);
-    hl_buf_init(&out);
-    if (rc < 0 && o.map == NULL)
-        rc = cli_usage(cmd, "missing --map: say the images, e.g. --map 'X = x + D*p; P = p'");
-    if (rc < 0 && o.nargs > 0)
-        rc = cli_usage(cmd, "unexpected argument '%s'", o.args[0]);
-    if (rc < 0) {
-        const char *extra[] = {o.map, NULL};
-        /* With -H, H defines the system; without, the map's right sides do. */
-        rc = cli_system(&sys, &o, o.H ? NULL : extra);
-    }
-    if (rc == CLI_OK) {
-        hl_alg_ctx *ctx = hl_system_ctx(sys);
-        int N2 = 2 * hl_system_ndof(sys), canonical = 0;
-        hl_alg *img = hl_alg_vec_new(N2, ctx), *br = hl_alg_vec_new(N2 * N2, ctx);
-        if (hl_system_read_map(img, sys, o.map, &err) == HL_OK &&
-            hl_check_canonical(&canonical, br, img, sys, &err) == HL_OK) {
-            write_out(&out, sys, img, br, canonical, o.format);
-            rc = cli_emit(&out, canonical ? CLI_OK : CLI_FAILS);
-        } else {
-            if (err.src == o.map)
-                hl_error_prefix(&err, "in --map");
-            rc = cli_fail(&err);
-        }
-        hl_alg_vec_free(img, N2, ctx);
-        hl_alg_vec_free(br, N2 * N2, ctx);
-    }
-    hl_buf_clear(&out);
-    hl_system_free(sys);
-    cli_opts_clear(&o);
-    return rc;
+    static const cli_spec spec = {"canonical", CLI_OPT_H | CLI_OPT_MAP, check, run};
+    return cli_main(argc, argv, &spec);
 }

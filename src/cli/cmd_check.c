@@ -183,47 +183,37 @@ static void write_text(hl_buf *out, const check_result *res, hl_system *sys, con
     cli_numeric_note(out, sys, o->format);
 }
 
+static int check(const cli_opts *o, const cli_command *cmd, const char **extra)
+{
+    (void)extra; /* H alone defines the system: a symbol of an integral that
+                  * is not in it is a mistake to point at, not a parameter */
+    if (o->H == NULL)
+        return cli_usage(cmd, "missing -H: check needs a Hamiltonian");
+    if (o->nintegral == 0)
+        return cli_usage(cmd, "nothing to check: give at least one --integral");
+    if (o->nargs > 0)
+        return cli_usage(cmd, "unexpected argument '%s' (give functions with --integral)",
+                         o->args[0]);
+    return -1;
+}
+
+static int run(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_error *err)
+{
+    check_result res = {0};
+    int st = compute(&res, sys, o, err);
+    if (st == HL_OK) {
+        if (o->format == CLI_JSON)
+            write_json(out, &res, sys, o);
+        else
+            write_text(out, &res, sys, o);
+        *code = all_integrals(&res) ? CLI_OK : CLI_FAILS;
+    }
+    result_clear(&res, hl_system_ctx(sys));
+    return st;
+}
+
 int cmd_check(int argc, char **argv)
 {
-    const cli_command *cmd = cli_find("check");
-    cli_opts o;
-    hl_system *sys = NULL;
-    hl_error err;
-    hl_buf out;
-    int rc = cli_parse(&o, argc, argv, CLI_OPT_H | CLI_OPT_INTEGRAL, cmd);
-
-    if (rc >= 0) { /* --help printed, or a usage error reported */
-        cli_opts_clear(&o);
-        return rc;
-    }
-    hl_error_clear(&err);
-    hl_buf_init(&out);
-    if (rc < 0 && o.H == NULL)
-        rc = cli_usage(cmd, "missing -H: check needs a Hamiltonian");
-    if (rc < 0 && o.nintegral == 0)
-        rc = cli_usage(cmd, "nothing to check: give at least one --integral");
-    if (rc < 0 && o.nargs > 0)
-        rc = cli_usage(cmd, "unexpected argument '%s' (give functions with --integral)",
-                       o.args[0]);
-    if (rc < 0) {
-        /* H alone defines the system: a symbol of an integral that is not
-         * in it is a mistake to point at, not a new parameter. */
-        rc = cli_system(&sys, &o, NULL);
-    }
-    if (rc == CLI_OK) {
-        check_result res = {0};
-        if (compute(&res, sys, &o, &err) == HL_OK) {
-            if (o.format == CLI_JSON)
-                write_json(&out, &res, sys, &o);
-            else
-                write_text(&out, &res, sys, &o);
-            rc = cli_emit(&out, all_integrals(&res) ? CLI_OK : CLI_FAILS);
-        } else
-            rc = cli_fail(&err);
-        result_clear(&res, hl_system_ctx(sys));
-    }
-    hl_buf_clear(&out);
-    hl_system_free(sys);
-    cli_opts_clear(&o);
-    return rc;
+    static const cli_spec spec = {"check", CLI_OPT_H | CLI_OPT_INTEGRAL, check, run};
+    return cli_main(argc, argv, &spec);
 }

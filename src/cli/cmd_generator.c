@@ -3,8 +3,10 @@
 
 #include "cli/cli.h"
 
-static int run(hl_buf *out, hl_system *sys, cli_format f, hl_error *err)
+static int run(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_error *err)
 {
+    (void)code; /* always CLI_OK: nothing is checked */
+    cli_format f = o->format;
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     hl_pool *pool = hl_system_pool(sys);
     int n = hl_system_ndof(sys);
@@ -40,31 +42,18 @@ static int run(hl_buf *out, hl_system *sys, cli_format f, hl_error *err)
     return st;
 }
 
+static int check(const cli_opts *o, const cli_command *cmd, const char **extra)
+{
+    (void)extra;
+    if (o->H == NULL)
+        return cli_usage(cmd, "missing -H: the generator needs a Hamiltonian");
+    if (o->nargs > 0)
+        return cli_usage(cmd, "unexpected argument '%s'", o->args[0]);
+    return -1;
+}
+
 int cmd_generator(int argc, char **argv)
 {
-    const cli_command *cmd = cli_find("generator");
-    cli_opts o;
-    hl_system *sys = NULL;
-    hl_error err;
-    hl_buf out;
-    int rc = cli_parse(&o, argc, argv, CLI_OPT_H, cmd);
-
-    if (rc >= 0) { /* --help printed, or a usage error reported */
-        cli_opts_clear(&o);
-        return rc;
-    }
-    hl_error_clear(&err);
-    hl_buf_init(&out);
-    if (rc < 0 && o.H == NULL)
-        rc = cli_usage(cmd, "missing -H: the generator needs a Hamiltonian");
-    if (rc < 0 && o.nargs > 0)
-        rc = cli_usage(cmd, "unexpected argument '%s'", o.args[0]);
-    if (rc < 0)
-        rc = cli_system(&sys, &o, NULL);
-    if (rc == CLI_OK)
-        rc = run(&out, sys, o.format, &err) == HL_OK ? cli_emit(&out, CLI_OK) : cli_fail(&err);
-    hl_buf_clear(&out);
-    hl_system_free(sys);
-    cli_opts_clear(&o);
-    return rc;
+    static const cli_spec spec = {"generator", CLI_OPT_H, check, run};
+    return cli_main(argc, argv, &spec);
 }

@@ -78,8 +78,10 @@ static void write_item(hl_buf *out, hl_json *j, const lie_item *it, int order, h
     free(phi);
 }
 
-static int run(hl_buf *out, hl_system *sys, const cli_opts *o, int order, hl_error *err)
+static int run(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_error *err)
 {
+    int order = o->have_order ? o->order : 4;
+    (void)code; /* always CLI_OK: nothing is checked */
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     int N = hl_system_ndof(sys), n = o->nof ? o->nof : 2 * N, st = HL_OK;
     lie_item *it = hl_xcalloc((size_t)n, sizeof *it);
@@ -129,42 +131,26 @@ static int run(hl_buf *out, hl_system *sys, const cli_opts *o, int order, hl_err
     return st;
 }
 
+static int check(const cli_opts *o, const cli_command *cmd, const char **extra)
+{
+    (void)extra; /* H alone defines the system */
+    if (o->H == NULL)
+        return cli_usage(cmd, "missing -H: the Lie series needs a Hamiltonian");
+    if (o->nargs > 0)
+        return cli_usage(cmd, "unexpected argument '%s' (give functions with --of)", o->args[0]);
+    if (o->have_order && o->order < 0)
+        return cli_usage(cmd, "--order must be at least 0, not %d", o->order);
+    if (o->have_order && o->order > HL_LIE_MAX_ORDER) {
+        fprintf(stderr, "hamlie: error: --order %d refused: the Lie series is limited to "
+                        "order %d\n", o->order, HL_LIE_MAX_ORDER);
+        return CLI_ERROR;
+    }
+    return -1;
+}
+
 int cmd_lie(int argc, char **argv)
 {
-    const cli_command *cmd = cli_find("lie");
-    cli_opts o;
-    hl_system *sys = NULL;
-    hl_error err;
-    hl_buf out;
-    int rc = cli_parse(&o, argc, argv, CLI_OPT_H | CLI_OPT_ORDER | CLI_OPT_OF | CLI_OPT_TERMS,
-                       cmd);
-
-    if (rc >= 0) { /* --help printed, or a usage error reported */
-        cli_opts_clear(&o);
-        return rc;
-    }
-    hl_error_clear(&err);
-    hl_buf_init(&out);
-    if (rc < 0 && o.H == NULL)
-        rc = cli_usage(cmd, "missing -H: the Lie series needs a Hamiltonian");
-    if (rc < 0 && o.nargs > 0)
-        rc = cli_usage(cmd, "unexpected argument '%s' (give functions with --of)", o.args[0]);
-    if (rc < 0 && o.have_order && o.order < 0)
-        rc = cli_usage(cmd, "--order must be at least 0, not %d", o.order);
-    if (rc < 0 && o.have_order && o.order > HL_LIE_MAX_ORDER) {
-        fprintf(stderr, "hamlie: error: --order %d refused: the Lie series is limited to "
-                        "order %d\n", o.order, HL_LIE_MAX_ORDER);
-        rc = CLI_ERROR;
-    }
-    if (rc < 0) {
-        rc = cli_system(&sys, &o, NULL); /* H alone defines the system */
-    }
-    if (rc == CLI_OK) {
-        int order = o.have_order ? o.order : 4;
-        rc = run(&out, sys, &o, order, &err) == HL_OK ? cli_emit(&out, CLI_OK) : cli_fail(&err);
-    }
-    hl_buf_clear(&out);
-    hl_system_free(sys);
-    cli_opts_clear(&o);
-    return rc;
+    static const cli_spec spec = {"lie", CLI_OPT_H | CLI_OPT_ORDER | CLI_OPT_OF | CLI_OPT_TERMS,
+                                  check, run};
+    return cli_main(argc, argv, &spec);
 }

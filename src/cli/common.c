@@ -183,3 +183,30 @@ int cli_take_own(int *argc, char **argv, const cli_own *own, int n,
     *argc = kept;
     return -1;
 }
+
+int cli_main(int argc, char **argv, const cli_spec *spec)
+{
+    const cli_command *cmd = cli_find(spec->name);
+    const char *extra[3] = {NULL, NULL, NULL};
+    hl_system *sys = NULL;
+    cli_opts o;
+    hl_error err;
+    hl_buf out;
+    int rc = cli_parse(&o, argc, argv, spec->accept, cmd);
+
+    if (rc < 0 && spec->check)
+        rc = spec->check(&o, cmd, extra);
+    if (rc < 0) /* with -H, H alone defines the system */
+        rc = cli_system(&sys, &o, o.H || extra[0] == NULL ? NULL : extra);
+    if (rc == CLI_OK) {
+        int code = CLI_OK;
+        hl_error_clear(&err);
+        hl_buf_init(&out);
+        rc = spec->body(&out, &code, sys, &o, &err) == HL_OK ? cli_emit(&out, code)
+                                                              : cli_fail(&err);
+        hl_buf_clear(&out);
+    }
+    hl_system_free(sys);
+    cli_opts_clear(&o);
+    return rc;
+}
