@@ -198,7 +198,7 @@ int cli_main(int argc, char **argv, const cli_spec *spec)
         rc = spec->check(&o, cmd, extra);
     if (rc < 0) /* with -H, H alone defines the system */
         rc = cli_system(&sys, &o, o.H || extra[0] == NULL ? NULL : extra);
-    if (rc == CLI_OK) {
+    if (rc == CLI_OK && sys != NULL) { /* not after --help */
         int code = CLI_OK;
         hl_error_clear(&err);
         hl_buf_init(&out);

@@ -703,7 +703,7 @@ int hl_tape_jit_available(void)
 const char *__lsan_default_suppressions(void);
 const char *__lsan_default_suppressions(void)
 {
-    return "leak:libgccjit.so\n";
+    return "leak:libgccjit.so\nleak:libfontconfig.so\n";
 }
 #endif
 

@@ -257,7 +257,7 @@ static void test_line_and_dots(void)
     CHECK(!near(img, x, y, 2, is_blue));
 
     for (int k = 0; k < 2; k++) {
-        double cx, cy;
+        double cx = NAN, cy = NAN; /* stay NaN if no pixel is found */
         to_pixel(&x, &y, &b, win, dx[k], dy[k]);
         CHECK(centroid(&cx, &cy, img, (int)x - 10, (int)x + 10, (int)y - 10, (int)y + 10,
                        is_blue));
