@@ -19,14 +19,6 @@
 #include "hamlie/plot.h"
 #include "hl_test.h"
 
-/* fontconfig (under PLplot's cairo text) keeps process-wide caches that it
- * never frees: not leaks of hamlie's. */
-const char *__lsan_default_suppressions(void);
-const char *__lsan_default_suppressions(void)
-{
-    return "leak:libfontconfig.so\n";
-}
-
 #define W 800
 #define H 600
 
