@@ -1,0 +1,861 @@
+/* Figures for any run (runplot.h): the columns of `hamlie run`'s CSV drawn
+ * with plot.h, several runs compared on each figure.
+ *
+ * Column roles come from the names, as cmd_run writes them: "t", then the
+ * 2N phase variables (q_1..q_N, p_1..p_N), "H", then "sigma" when the run
+ * had a reference, then the observers.  The figures (file base names):
+ *   phase-<q>-<p>     each canonical pair (or the --phase projection)
+ *   time-<v>          each phase variable in time
+ *   energy-error      |H - H0| in time, log scale
+ *   sigma             sigma = |z_n - z(t_n)|^2 in time, log scale (when the
+ *                     runs have the column)
+ *   observer-<k>-<f>  each observer in time
+ * Names in files keep [A-Za-z0-9._-] and turn anything else into '_'. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+
+#include "base/buf.h"
+#include "hamlie/plot.h"
+#include "hamlie/runplot.h"
+
+#define RP_MAX_COLS 100000
+#define RP_MARKER_ROWS 400 /* runs with at most this many rows are drawn as markers */
+
+struct hl_runplot {
+    char *label;
+    int ncols;
+    char **names;
+    double *v; /* rows x ncols, row-major */
+    size_t nrows, cap;
+};
+
+hl_runplot *hl_runplot_new(const char *label, int ncols, const char *const *names)
+{
+    hl_runplot *rp = hl_xcalloc(1, sizeof *rp);
+    rp->label = hl_xstrdup(label != NULL ? label : "run");
+    rp->ncols = ncols > 0 ? ncols : 0;
+    rp->names = hl_xcalloc((size_t)rp->ncols + 1, sizeof *rp->names);
+    for (int i = 0; i < rp->ncols; i++)
+        rp->names[i] = hl_xstrdup(names != NULL && names[i] != NULL ? names[i] : "");
+    return rp;
+}
+
+void hl_runplot_free(hl_runplot *rp)
+{
+    if (rp == NULL)
+        return;
+    for (int i = 0; i < rp->ncols; i++)
+        free(rp->names[i]);
+    free(rp->names);
+    free(rp->label);
+    free(rp->v);
+    free(rp);
+}
+
+size_t hl_runplot_nrows(const hl_runplot *rp) { return rp != NULL ? rp->nrows : 0; }
+
+const char *hl_runplot_label(const hl_runplot *rp) { return rp != NULL ? rp->label : NULL; }
+
+hl_status hl_runplot_add_row(hl_runplot *rp, const double *values, hl_error *err)
+{
+    if (rp == NULL || values == NULL || rp->ncols == 0)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "a run plot row needs its values");
+    if (rp->nrows == rp->cap) {
+        rp->cap = rp->cap ? 2 * rp->cap : 256;
+        rp->v = hl_xrealloc(rp->v, rp->cap * (size_t)rp->ncols * sizeof *rp->v);
+    }
+    memcpy(rp->v + rp->nrows * (size_t)rp->ncols, values, (size_t)rp->ncols * sizeof *values);
+    rp->nrows++;
+    return HL_OK;
+}
+
+/* ---- the CSV reader ----------------------------------------------------- */
+
+/* The next field of line s from *pos (CSV: "..." with "" for a quote).
+ * Returns the field (malloc'd) and moves *pos past its comma; NULL with
+ * *bad set on an unterminated quote. */
+static char *next_field(const char *s, size_t *pos, int *bad)
+{
+    hl_buf b;
+    hl_buf_init(&b);
+    size_t i = *pos;
+    if (s[i] == '"') {
+        for (i++;; i++) {
+            if (s[i] == '\0') {
+                *bad = 1;
+                hl_buf_clear(&b);
+                return NULL;
+            }
+            if (s[i] == '"') {
+                if (s[i + 1] == '"') {
+                    hl_buf_putc(&b, '"');
+                    i++;
+                    continue;
+                }
+                i++;
+                break;
+            }
+            hl_buf_putc(&b, s[i]);
+        }
+        if (s[i] != ',' && s[i] != '\0') {
+            *bad = 1;
+            hl_buf_clear(&b);
+            return NULL;
+        }
+    } else {
+        size_t n = strcspn(s + i, ",");
+        hl_buf_putn(&b, s + i, n);
+        i += n;
+    }
+    if (s[i] == ',')
+        i++;
+    *pos = i;
+    return hl_buf_take(&b);
+}
+
+static char *trim(char *s)
+{
+    while (*s == ' ' || *s == '\t')
+        s++;
+    size_t n = strlen(s);
+    while (n > 0 && (s[n - 1] == ' ' || s[n - 1] == '\t'))
+        s[--n] = '\0';
+    return s;
+}
+
+/* A number as `hamlie run` writes it (strtod: also inf, -inf, nan). */
+static int parse_number(double *v, const char *s)
+{
+    char *end;
+    if (*s == '\0')
+        return 0;
+    *v = strtod(s, &end);
+    return *end == '\0';
+}
+
+/* Read one line (any length) into *line (getline's buffer) without its
+ * '\n' / "\r\n"; 0 at the end. */
+static int read_line(char **line, size_t *cap, FILE *fp, int *io_error)
+{
+    ssize_t n = getline(line, cap, fp);
+    if (n < 0) {
+        if (ferror(fp))
+            *io_error = 1;
+        return 0;
+    }
+    if (n > 0 && (*line)[n - 1] == '\n')
+        (*line)[--n] = '\0';
+    if (n > 0 && (*line)[n - 1] == '\r')
+        (*line)[--n] = '\0';
+    return 1;
+}
+
+/* The header: names, the first "t"; roles are checked at write time. */
+static hl_status read_header(char ***names, int *ncols, const char *line, const char *path,
+                             hl_error *err)
+{
+    size_t pos = 0;
+    int bad = 0, n = 0;
+    char **v = NULL;
+    do {
+        char *f = next_field(line, &pos, &bad);
+        if (f == NULL) {
+            for (int i = 0; i < n; i++)
+                free(v[i]);
+            free(v);
+            return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                                "%s: line 1, column %d: unterminated quoted name", path, n + 1);
+        }
+        v = hl_xrealloc(v, (size_t)(n + 1) * sizeof *v);
+        char *t = trim(f);
+        memmove(f, t, strlen(t) + 1);
+        v[n++] = f;
+    } while (line[pos] != '\0' && n < RP_MAX_COLS);
+    if (line[pos] != '\0') {
+        for (int i = 0; i < n; i++)
+            free(v[i]);
+        free(v);
+        return hl_error_set(err, HL_ELIMIT, NULL, -1, 0, "%s: line 1: more than %d columns",
+                            path, RP_MAX_COLS);
+    }
+    /* a trailing comma means one more (empty) field */
+    if (pos > 0 && line[pos - 1] == ',' && line[pos] == '\0') {
+        v = hl_xrealloc(v, (size_t)(n + 1) * sizeof *v);
+        v[n++] = hl_xstrdup("");
+    }
+    hl_status st = HL_OK;
+    if (strcmp(v[0], "t") != 0)
+        st = hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                          "%s: line 1, column 1: the first column must be 't', not '%s' "
+                          "(is this a CSV written by hamlie run?)",
+                          path, v[0]);
+    for (int i = 0; st == HL_OK && i < n; i++)
+        if (v[i][0] == '\0')
+            st = hl_error_set(err, HL_EINVAL, NULL, -1, 0, "%s: line 1, column %d: empty name",
+                              path, i + 1);
+    if (st != HL_OK) {
+        for (int i = 0; i < n; i++)
+            free(v[i]);
+        free(v);
+        return st;
+    }
+    *names = v;
+    *ncols = n;
+    return HL_OK;
+}
+
+/* One data row into values[ncols].  Unquoted fields (all of hamlie run's)
+ * are read in place; a quoted one goes through next_field. */
+static hl_status read_row(double *values, const char *line, int ncols, char *const *names,
+                          const char *path, long lineno, hl_error *err)
+{
+    size_t pos = 0;
+    int bad = 0;
+    for (int j = 0; j < ncols; j++) {
+        if (j > 0 && (pos == 0 || line[pos - 1] != ','))
+            return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                                "%s: line %ld: %d values, the header names %d columns", path,
+                                lineno, j, ncols);
+        const char *s = line + pos;
+        size_t n = strcspn(s, ",\"");
+        if (s[n] != '"') { /* the fast path: strtod where the field is */
+            char *end;
+            while (*s == ' ' || *s == '\t')
+                s++;
+            values[j] = strtod(s, &end);
+            while (*end == ' ' || *end == '\t')
+                end++;
+            if (end != s && (*end == ',' || *end == '\0')) {
+                pos = (size_t)(end - line) + (*end == ',');
+                continue;
+            }
+        }
+        char *f = next_field(line, &pos, &bad);
+        if (f == NULL)
+            return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                                "%s: line %ld, column %d (%s): unterminated quote", path,
+                                lineno, j + 1, names[j]);
+        int ok = parse_number(&values[j], trim(f));
+        if (!ok) {
+            hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                         "%s: line %ld, column %d (%s): '%.40s' is not a number", path, lineno,
+                         j + 1, names[j], trim(f));
+            free(f);
+            return HL_EINVAL;
+        }
+        free(f);
+    }
+    if (line[pos] != '\0' || (pos > 0 && line[pos - 1] == ',')) {
+        int extra = 1;
+        for (size_t i = pos; line[i] != '\0'; i++)
+            extra += line[i] == ',';
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                            "%s: line %ld: %d values, the header names %d columns", path, lineno,
+                            ncols + extra, ncols);
+    }
+    return HL_OK;
+}
+
+static const char *base_name(const char *path)
+{
+    const char *s = strrchr(path, '/');
+    return s != NULL ? s + 1 : path;
+}
+
+hl_status hl_runplot_read_csv(hl_runplot **out, const char *path, const char *label,
+                              hl_error *err)
+{
+    *out = NULL;
+    FILE *fp = fopen(path, "r");
+    if (fp == NULL)
+        return hl_error_set(err, HL_EIO, NULL, -1, 0, "cannot read '%s': %s", path,
+                            strerror(errno));
+    char *line = NULL;
+    size_t cap = 0;
+    int io_error = 0, ncols = 0;
+    char **names = NULL;
+    hl_runplot *rp = NULL;
+    hl_status st = HL_OK;
+    if (!read_line(&line, &cap, fp, &io_error))
+        st = io_error ? hl_error_set(err, HL_EIO, NULL, -1, 0, "reading '%s' failed", path)
+                      : hl_error_set(err, HL_EINVAL, NULL, -1, 0, "%s: empty file (no header)",
+                                     path);
+    else
+        st = read_header(&names, &ncols, line, path, err);
+    if (st == HL_OK) {
+        char *lab = NULL;
+        if (label == NULL) { /* the base name without its .csv */
+            lab = hl_xstrdup(base_name(path));
+            size_t n = strlen(lab);
+            if (n > 4 && strcasecmp(lab + n - 4, ".csv") == 0)
+                lab[n - 4] = '\0';
+        }
+        rp = hl_runplot_new(label != NULL ? label : lab, ncols, (const char *const *)names);
+        free(lab);
+        double *values = hl_xmalloc((size_t)ncols * sizeof *values);
+        for (long lineno = 2; st == HL_OK && read_line(&line, &cap, fp, &io_error); lineno++) {
+            if (trim(line)[0] == '\0')
+                continue; /* blank lines (a final newline) */
+            st = read_row(values, line, ncols, names, path, lineno, err);
+            if (st == HL_OK)
+                st = hl_runplot_add_row(rp, values, err);
+        }
+        free(values);
+        if (st == HL_OK && io_error)
+            st = hl_error_set(err, HL_EIO, NULL, -1, 0, "reading '%s' failed", path);
+        if (st == HL_OK && rp->nrows == 0)
+            st = hl_error_set(err, HL_EINVAL, NULL, -1, 0, "%s: no data rows after the header",
+                              path);
+    }
+    for (int i = 0; i < ncols; i++)
+        free(names[i]);
+    free(names);
+    free(line);
+    fclose(fp);
+    if (st != HL_OK) {
+        hl_runplot_free(rp);
+        return st;
+    }
+    *out = rp;
+    return HL_OK;
+}
+
+/* ---- roles of the columns -------------------------------------------------- */
+
+typedef struct roles {
+    int n2;     /* phase variables: columns 1..n2 */
+    int iH;     /* the H column, -1 if none */
+    int isigma; /* the sigma column, -1 if none */
+    int obs0;   /* first observer column (ncols if none) */
+} roles;
+
+static hl_status find_roles(roles *r, const hl_runplot *rp, hl_error *err)
+{
+    r->iH = r->isigma = -1;
+    for (int j = 1; j < rp->ncols; j++)
+        if (strcmp(rp->names[j], "H") == 0) {
+            r->iH = j;
+            break;
+        }
+    if (rp->ncols < 1 || strcmp(rp->names[0], "t") != 0)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                            "run '%s': the first column must be 't'", rp->label);
+    if (r->iH < 0)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                            "run '%s': no column 'H' (hamlie run writes t, the variables, H, "
+                            "sigma, the observers)",
+                            rp->label);
+    r->n2 = r->iH - 1;
+    if (r->n2 < 2 || r->n2 % 2 != 0)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                            "run '%s': %d columns between 't' and 'H': the phase variables come "
+                            "in pairs (q_1..q_N, p_1..p_N)",
+                            rp->label, r->n2);
+    r->obs0 = r->iH + 1;
+    if (r->obs0 < rp->ncols && strcmp(rp->names[r->obs0], "sigma") == 0)
+        r->isigma = r->obs0++;
+    return HL_OK;
+}
+
+static int col_index(const hl_runplot *rp, const char *name, size_t n)
+{
+    for (int j = 0; j < rp->ncols; j++)
+        if (strlen(rp->names[j]) == n && strncmp(rp->names[j], name, n) == 0)
+            return j;
+    return -1;
+}
+
+/* ---- figures --------------------------------------------------------------- */
+
+/* Text for PLplot: '#' is its escape character. */
+static char *pl_text(const char *s)
+{
+    hl_buf b;
+    hl_buf_init(&b);
+    for (; *s; s++) {
+        if (*s == '#')
+            hl_buf_putc(&b, '#');
+        hl_buf_putc(&b, *s);
+    }
+    return hl_buf_take(&b);
+}
+
+static void file_part(hl_buf *b, const char *s)
+{
+    size_t n = 0;
+    for (; *s && n < 60; s++, n++) {
+        char c = *s;
+        int ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                 c == '.' || c == '-' || c == '_';
+        hl_buf_putc(b, ok ? c : '_');
+    }
+}
+
+static const hl_color run_colors[] = {HL_COLOR_BLUE,   HL_COLOR_RED,   HL_COLOR_GREEN,
+                                      HL_COLOR_ORANGE, HL_COLOR_PURPLE, HL_COLOR_CYAN,
+                                      HL_COLOR_MAGENTA, HL_COLOR_BROWN, HL_COLOR_GRAY,
+                                      HL_COLOR_BLACK};
+static const hl_draw run_markers[] = {HL_DRAW_DOTS, HL_DRAW_SQUARES, HL_DRAW_TRIANGLES,
+                                      HL_DRAW_DIAMONDS};
+
+#define NCOLORS ((int)(sizeof run_colors / sizeof run_colors[0]))
+
+/* What a figure plots against what: column ix (or t) and a y computed from
+ * the row. */
+typedef enum yk { Y_COL, Y_DH } yk;
+
+typedef struct fig_spec {
+    int ix, iy; /* columns */
+    yk kind;
+    int log;    /* log y axis (if any value > 0) */
+    int phase;  /* a phase portrait: equal aspect when the spans compare */
+} fig_spec;
+
+static hl_status add_runs(hl_figure *f, hl_runplot *const *runs, int nruns, fig_spec sp,
+                          int *any_pos, hl_error *err)
+{
+    hl_status st = HL_OK;
+    *any_pos = 0;
+    for (int r = 0; r < nruns && st == HL_OK; r++) {
+        const hl_runplot *rp = runs[r];
+        size_t n = rp->nrows, nc = (size_t)rp->ncols;
+        double *x = hl_xmalloc((n + 1) * sizeof *x), *y = hl_xmalloc((n + 1) * sizeof *y);
+        double H0 = n > 0 ? rp->v[sp.iy] : NAN;
+        for (size_t i = 0; i < n; i++) {
+            x[i] = rp->v[i * nc + (size_t)sp.ix];
+            double v = rp->v[i * nc + (size_t)sp.iy];
+            y[i] = sp.kind == Y_DH ? fabs(v - H0) : v;
+            if (y[i] > 0 && isfinite(y[i]))
+                *any_pos = 1;
+        }
+        char *lab = pl_text(rp->label);
+        hl_draw d = n <= RP_MARKER_ROWS ? run_markers[r % 4] : HL_DRAW_LINE;
+        st = hl_figure_add(f, n, x, y, d, run_colors[r % NCOLORS], lab, err);
+        free(lab);
+        free(x);
+        free(y);
+    }
+    return st;
+}
+
+typedef struct fig_list {
+    hl_figure **f;
+    char **name;
+    int n;
+} fig_list;
+
+static void push(fig_list *l, hl_figure *f, char *name)
+{
+    l->f = hl_xrealloc(l->f, (size_t)(l->n + 1) * sizeof *l->f);
+    l->name = hl_xrealloc(l->name, (size_t)(l->n + 1) * sizeof *l->name);
+    l->f[l->n] = f;
+    l->name[l->n++] = name;
+}
+
+static void list_clear(fig_list *l)
+{
+    for (int i = 0; i < l->n; i++) {
+        hl_figure_free(l->f[i]);
+        free(l->name[i]);
+    }
+    free(l->f);
+    free(l->name);
+    memset(l, 0, sizeof *l);
+}
+
+/* Are the spans of columns a and b (finite values, over all runs) within a
+ * factor 4 of each other?  A phase portrait is then drawn with equal aspect
+ * (a circle stays a circle); a rotating pendulum's q runs far and is not. */
+static int comparable_spans(hl_runplot *const *runs, int nruns, int a, int b)
+{
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    int col[2] = {a, b};
+    for (int r = 0; r < nruns; r++)
+        for (size_t i = 0; i < runs[r]->nrows; i++)
+            for (int k = 0; k < 2; k++) {
+                double v = runs[r]->v[i * (size_t)runs[r]->ncols + (size_t)col[k]];
+                if (isfinite(v)) {
+                    lo[k] = fmin(lo[k], v);
+                    hi[k] = fmax(hi[k], v);
+                }
+            }
+    double sa = hi[0] - lo[0], sb = hi[1] - lo[1];
+    return sa > 0 && sb > 0 && isfinite(sa) && isfinite(sb) && sa <= 4 * sb && sb <= 4 * sa;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* A y range that leaves out poles.  With w the range of the middle 90% of
+ * the finite values of column c (all runs; the 5th to the 95th percentile)
+ * and [lo, hi] that range widened by w/2 on each side, clip to [lo, hi]
+ * when the values spread over more than 5 w and some run leaves [lo, hi]
+ * and comes back: a spike, as x/p near p = 0 (up to 1e16; the curve is
+ * then drawn with breaks at the poles, plot.h).  A run that grows out of
+ * the range and stays out (a blow-up, e^(2t)) is not clipped.  0 if no
+ * clipping is needed. */
+static int robust_range(double *lo, double *hi, hl_runplot *const *runs, int nruns, int c)
+{
+    size_t n = 0, cap = 0;
+    for (int r = 0; r < nruns; r++)
+        cap += runs[r]->nrows;
+    double *v = hl_xmalloc((cap + 1) * sizeof *v);
+    for (int r = 0; r < nruns; r++)
+        for (size_t i = 0; i < runs[r]->nrows; i++) {
+            double y = runs[r]->v[i * (size_t)runs[r]->ncols + (size_t)c];
+            if (isfinite(y))
+                v[n++] = y;
+        }
+    int clip = 0;
+    if (n >= 50) {
+        qsort(v, n, sizeof *v, cmp_double);
+        double q0 = v[(size_t)(0.05 * (double)(n - 1))], q1 = v[(size_t)(0.95 * (double)(n - 1))];
+        double w = q1 - q0;
+        *lo = q0 - 0.5 * w;
+        *hi = q1 + 0.5 * w;
+        if (w > 0 && v[n - 1] - v[0] > 5 * w)
+            for (int r = 0; r < nruns && !clip; r++) {
+                int out = 0;
+                for (size_t i = 0; i < runs[r]->nrows && !clip; i++) {
+                    double y = runs[r]->v[i * (size_t)runs[r]->ncols + (size_t)c];
+                    if (isnan(y))
+                        continue;
+                    if (!(y >= *lo && y <= *hi))
+                        out = 1;
+                    else if (out)
+                        clip = 1;
+                }
+            }
+    }
+    free(v);
+    return clip;
+}
+
+/* The legend's corner: the one whose box covers the fewest points.  The box
+ * is taken as 45% of the plot's width and 5% + 6% per run of its height
+ * (about what plot.h draws at the default size), in fractions of the data's
+ * range (of the clipped range, of log10 y on a log axis). */
+static hl_legend_pos legend_corner(hl_runplot *const *runs, int nruns, fig_spec sp, int ylog,
+                                   const double *clip)
+{
+    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+    long count[4] = {0, 0, 0, 0};
+    for (int pass = 0; pass < 2; pass++) {
+        if (pass == 1) {
+            if (clip != NULL)
+                y0 = clip[0], y1 = clip[1];
+            if (!(x1 > x0 && y1 > y0))
+                return HL_LEGEND_TOP_RIGHT;
+        }
+        double lw = 0.45, lh = 0.05 + 0.06 * nruns;
+        for (int r = 0; r < nruns; r++) {
+            const hl_runplot *rp = runs[r];
+            size_t nc = (size_t)rp->ncols;
+            double H0 = rp->v[sp.iy];
+            for (size_t i = 0; i < rp->nrows; i++) {
+                double x = rp->v[i * nc + (size_t)sp.ix], y = rp->v[i * nc + (size_t)sp.iy];
+                if (sp.kind == Y_DH)
+                    y = fabs(y - H0);
+                if (ylog)
+                    y = y > 0 ? log10(y) : NAN;
+                if (!isfinite(x) || !isfinite(y) ||
+                    (clip != NULL && !(y >= clip[0] && y <= clip[1])))
+                    continue;
+                if (pass == 0) {
+                    x0 = fmin(x0, x), x1 = fmax(x1, x), y0 = fmin(y0, y), y1 = fmax(y1, y);
+                    continue;
+                }
+                double fx = (x - x0) / (x1 - x0), fy = (y - y0) / (y1 - y0);
+                int top = fy > 1 - lh, bottom = fy < lh, right = fx > 1 - lw, left = fx < lw;
+                count[HL_LEGEND_TOP_RIGHT] += top && right;
+                count[HL_LEGEND_TOP_LEFT] += top && left;
+                count[HL_LEGEND_BOTTOM_RIGHT] += bottom && right;
+                count[HL_LEGEND_BOTTOM_LEFT] += bottom && left;
+            }
+        }
+    }
+    int best = 0;
+    for (int k = 1; k < 4; k++)
+        if (count[k] < count[best])
+            best = k;
+    return (hl_legend_pos)best;
+}
+
+/* One figure: title, labels, the runs, the axis. */
+static hl_status one(fig_list *l, hl_runplot *const *runs, int nruns, fig_spec sp,
+                     const char *title, const char *xl, const char *yl, char *name,
+                     hl_error *err)
+{
+    char *t = pl_text(title), *x = pl_text(xl), *y = pl_text(yl);
+    hl_figure *f = hl_figure_new(t, x, y);
+    free(t), free(x), free(y);
+    int any_pos = 0;
+    hl_status st = add_runs(f, runs, nruns, sp, &any_pos, err);
+    if (st != HL_OK) {
+        hl_figure_free(f);
+        free(name);
+        return st;
+    }
+    if (sp.log)
+        hl_figure_set_yscale(f, any_pos ? HL_AXIS_LOG : HL_AXIS_LINEAR);
+    if (sp.phase && comparable_spans(runs, nruns, sp.ix, sp.iy))
+        hl_figure_set_equal_aspect(f, 1);
+    double clip[2];
+    int clipped = !sp.log && !sp.phase && sp.kind == Y_COL &&
+                  robust_range(&clip[0], &clip[1], runs, nruns, sp.iy);
+    if (clipped)
+        st = hl_figure_set_yclip(f, clip[0], clip[1], err);
+    if (st != HL_OK) {
+        hl_figure_free(f);
+        free(name);
+        return st;
+    }
+    hl_figure_set_legend(f, nruns > 1 ? legend_corner(runs, nruns, sp, sp.log && any_pos,
+                                                      clipped ? clip : NULL)
+                                      : HL_LEGEND_NONE);
+    push(l, f, name);
+    return HL_OK;
+}
+
+static char *fname(const char *prefix, const char *a, const char *b)
+{
+    hl_buf s;
+    hl_buf_init(&s);
+    hl_buf_puts(&s, prefix);
+    if (a != NULL) {
+        hl_buf_putc(&s, '-');
+        file_part(&s, a);
+    }
+    if (b != NULL) {
+        hl_buf_putc(&s, '-');
+        file_part(&s, b);
+    }
+    return hl_buf_take(&s);
+}
+
+/* The runs' names in a title: "euler" or "3 runs". */
+static void who(char *out, size_t n, hl_runplot *const *runs, int nruns)
+{
+    if (nruns == 1)
+        snprintf(out, n, "%s", runs[0]->label);
+    else
+        snprintf(out, n, "%d runs", nruns);
+}
+
+static hl_status check_runs(roles *ro, hl_runplot *const *runs, int nruns, hl_error *err)
+{
+    if (runs == NULL || nruns < 1)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "no run to plot");
+    for (int r = 0; r < nruns; r++)
+        if (runs[r] == NULL || runs[r]->nrows == 0)
+            return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "run %d has no rows", r + 1);
+    hl_status st = find_roles(ro, runs[0], err);
+    if (st != HL_OK)
+        return st;
+    for (int r = 1; r < nruns; r++) {
+        const hl_runplot *a = runs[0], *b = runs[r];
+        /* the same variables and H; sigma and the observers may differ only
+         * if they are absent: compare the whole header */
+        int same = a->ncols == b->ncols;
+        for (int j = 0; same && j < a->ncols; j++)
+            same = strcmp(a->names[j], b->names[j]) == 0;
+        if (!same)
+            return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                                "runs '%s' and '%s' have different columns: runs compared on "
+                                "one figure need the same system, observers and sigma",
+                                a->label, b->label);
+    }
+    return HL_OK;
+}
+
+hl_status hl_runplot_figures(hl_figure ***figs, char ***names, int *nfig,
+                             hl_runplot *const *runs, int nruns, const hl_runplot_opts *opts,
+                             hl_error *err)
+{
+    *figs = NULL;
+    *names = NULL;
+    *nfig = 0;
+    roles ro = {0};
+    hl_status st = check_runs(&ro, runs, nruns, err);
+    if (st != HL_OK)
+        return st;
+    const hl_runplot *r0 = runs[0];
+    int N = ro.n2 / 2;
+    fig_list l = {NULL, NULL, 0};
+    char w[200], title[600];
+    who(w, sizeof w, runs, nruns);
+
+    /* phase portraits */
+    const char *ph = opts != NULL ? opts->phase : NULL;
+    if (ph != NULL) {
+        const char *c = strchr(ph, ':');
+        int a = c != NULL ? col_index(r0, ph, (size_t)(c - ph)) : -1;
+        int b = c != NULL ? col_index(r0, c + 1, strlen(c + 1)) : -1;
+        if (c == NULL || a < 0 || b < 0) {
+            hl_buf cols;
+            hl_buf_init(&cols);
+            for (int j = 0; j < r0->ncols; j++)
+                hl_buf_printf(&cols, "%s%s", j ? ", " : "", r0->names[j]);
+            st = hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                              c == NULL ? "--phase wants two columns 'a:b', not '%s' (columns: %s)"
+                                        : "--phase '%s': no such column (columns: %s)",
+                              ph, cols.s);
+            hl_buf_clear(&cols);
+            return st;
+        }
+        snprintf(title, sizeof title, "%s: projection (%s, %s)", w, r0->names[a], r0->names[b]);
+        st = one(&l, runs, nruns, (fig_spec){a, b, Y_COL, 0, 1}, title, r0->names[a],
+                 r0->names[b], fname("phase", r0->names[a], r0->names[b]), err);
+    } else
+        for (int j = 0; j < N && st == HL_OK; j++) {
+            int a = 1 + j, b = 1 + N + j;
+            snprintf(title, sizeof title, "%s: phase portrait (%s, %s)", w, r0->names[a],
+                     r0->names[b]);
+            st = one(&l, runs, nruns, (fig_spec){a, b, Y_COL, 0, 1}, title, r0->names[a],
+                     r0->names[b], fname("phase", r0->names[a], r0->names[b]), err);
+        }
+    /* coordinates in time */
+    for (int j = 1; j <= ro.n2 && st == HL_OK; j++) {
+        snprintf(title, sizeof title, "%s: %s in time", w, r0->names[j]);
+        st = one(&l, runs, nruns, (fig_spec){0, j, Y_COL, 0, 0}, title, "t", r0->names[j],
+                 fname("time", r0->names[j], NULL), err);
+    }
+    /* the energy error */
+    if (st == HL_OK) {
+        snprintf(title, sizeof title, "%s: energy error |H - H0|", w);
+        st = one(&l, runs, nruns, (fig_spec){0, ro.iH, Y_DH, 1, 0}, title, "t", "|H - H0|",
+                 fname("energy-error", NULL, NULL), err);
+    }
+    /* sigma against the reference */
+    if (st == HL_OK && ro.isigma >= 0) {
+        /* the title has PLplot escapes: set after one(), which escapes '#' */
+        char *we = pl_text(w);
+        snprintf(title, sizeof title, "%s: #gs = |z#dn#u - z(t#dn#u)|#u2#d against the reference",
+                 we);
+        free(we);
+        st = one(&l, runs, nruns, (fig_spec){0, ro.isigma, Y_COL, 1, 0}, "", "t", "sigma",
+                 fname("sigma", NULL, NULL), err);
+        if (st == HL_OK) {
+            hl_figure_set_title(l.f[l.n - 1], title);
+            hl_figure_set_labels(l.f[l.n - 1], "t", "#gs");
+        }
+    }
+    /* observers */
+    for (int j = ro.obs0, k = 1; j < r0->ncols && st == HL_OK; j++, k++) {
+        char num[32];
+        snprintf(num, sizeof num, "observer-%d", k);
+        snprintf(title, sizeof title, "%s: %s in time", w, r0->names[j]);
+        st = one(&l, runs, nruns, (fig_spec){0, j, Y_COL, 0, 0}, title, "t", r0->names[j],
+                 fname(num, r0->names[j], NULL), err);
+    }
+    for (int i = 0; i < l.n && st == HL_OK && opts != NULL && (opts->width || opts->height); i++)
+        st = hl_figure_set_size(l.f[i], opts->width, opts->height, err);
+    if (st != HL_OK) {
+        list_clear(&l);
+        return st;
+    }
+    *figs = l.f;
+    *names = l.name;
+    *nfig = l.n;
+    return HL_OK;
+}
+
+void hl_runplot_figures_free(hl_figure **figs, char **names, int nfig)
+{
+    fig_list l = {figs, names, nfig};
+    list_clear(&l);
+}
+
+/* ---- writing ------------------------------------------------------------- */
+
+/* The formats of a list as plot.h reads it ("png,svg", spaces and commas
+ * between, case-insensitive; each counted once): HL_EINVAL before anything
+ * is written when a name is unknown or none is given. */
+static hl_status count_formats(int *n, const char *formats, hl_error *err)
+{
+    static const char *const known[3] = {"png", "svg", "pdf"};
+    int want[3] = {0, 0, 0};
+    *n = 0;
+    for (const char *p = formats != NULL ? formats : ""; *p;) {
+        while (*p == ' ' || *p == ',')
+            p++;
+        size_t len = strcspn(p, ", ");
+        if (len == 0)
+            break;
+        int k = 0;
+        while (k < 3 && !(len == 3 && strncasecmp(p, known[k], 3) == 0))
+            k++;
+        if (k == 3)
+            return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                                "unknown figure format '%.*s' (png, svg, pdf)", (int)len, p);
+        *n += !want[k];
+        want[k] = 1;
+        p += len;
+    }
+    return *n > 0 ? HL_OK : hl_error_set(err, HL_EINVAL, NULL, -1, 0, "no figure format given");
+}
+
+static hl_status make_dir(const char *dir, hl_error *err)
+{
+    char *d = hl_xstrdup(dir);
+    hl_status st = HL_OK;
+    for (char *s = d + 1; *s && st == HL_OK; s++) {
+        if (*s != '/')
+            continue;
+        *s = '\0';
+        if (mkdir(d, 0777) != 0 && errno != EEXIST)
+            st = hl_error_set(err, HL_EIO, NULL, -1, 0, "cannot create directory '%s': %s", d,
+                              strerror(errno));
+        *s = '/';
+    }
+    struct stat sb;
+    if (st == HL_OK && mkdir(d, 0777) != 0 &&
+        !(errno == EEXIST && stat(d, &sb) == 0 && S_ISDIR(sb.st_mode)))
+        st = hl_error_set(err, HL_EIO, NULL, -1, 0, "cannot create directory '%s': %s", d,
+                          errno == EEXIST ? "a file of that name exists" : strerror(errno));
+    free(d);
+    return st;
+}
+
+hl_status hl_runplot_write(hl_runplot *const *runs, int nruns, const char *dir,
+                           const hl_runplot_opts *opts, int *written, hl_error *err)
+{
+    if (written != NULL)
+        *written = 0;
+    const char *formats = opts != NULL && opts->formats != NULL ? opts->formats : "png";
+    int nfmt;
+    hl_status st = count_formats(&nfmt, formats, err);
+    if (st != HL_OK)
+        return st;
+    if (dir == NULL || *dir == '\0')
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "no output directory given");
+    hl_figure **figs;
+    char **names;
+    int nfig;
+    if ((st = hl_runplot_figures(&figs, &names, &nfig, runs, nruns, opts, err)) != HL_OK)
+        return st;
+    if ((st = make_dir(dir, err)) != HL_OK) {
+        hl_runplot_figures_free(figs, names, nfig);
+        return st;
+    }
+    hl_buf path;
+    hl_buf_init(&path);
+    for (int i = 0; i < nfig && st == HL_OK; i++) {
+        path.len = 0;
+        hl_buf_printf(&path, "%s/%s", dir, names[i]);
+        st = hl_figure_write(figs[i], path.s, formats, err);
+        if (st == HL_OK && written != NULL)
+            *written += nfmt;
+    }
+    hl_buf_clear(&path);
+    hl_runplot_figures_free(figs, names, nfig);
+    return st;
+}
