@@ -117,6 +117,7 @@ int cmd_canonical(int argc, char **argv);
 int cmd_lie(int argc, char **argv);
 int cmd_run(int argc, char **argv); extern const char cmd_run_help[];
 int cmd_schemes(int argc, char **argv); extern const char cmd_schemes_help[];
+int cmd_plot(int argc, char **argv); extern const char cmd_plot_help[];
 int cmd_errors(int argc, char **argv); extern const char cmd_errors_help[];
 
 #endif

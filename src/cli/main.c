@@ -84,6 +84,7 @@ static const cli_command commands[] = {
      "Example: hamlie lie -H 'p^2/2 - cos(q)' --order 6\n"},
     {"run", cmd_run, "run a scheme: a trajectory (CSV), its errors, observed orders", cmd_run_help},
     {"schemes", cmd_schemes, "the catalog of one-step schemes", cmd_schemes_help},
+    {"plot", cmd_plot, "figures of runs (CSV from hamlie run), compared", cmd_plot_help},
     {"errors", cmd_errors, "error analysis of a scheme: v_k, order, K(D) (paper §4)",
      cmd_errors_help},
 };
