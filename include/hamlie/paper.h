@@ -64,12 +64,16 @@ typedef struct hl_paper_formula {
     const char *id;        /* e.g. "euler-v3" */
     const char *what;      /* "Euler: the error field v_3" */
     const char *paper_eq;  /* where in the paper (equation label or section) */
-    char *printed;         /* the paper's print, as text (hamlie's syntax) */
-    char *printed_latex;
-    char *computed;        /* hamlie's result, as text */
+    char *printed;         /* the paper's print as transcribed (hamlie's syntax,
+                              decorated by kind: "X = ..., P = ...") */
+    char *printed_latex;   /* the print as read (canonical form), in LaTeX */
+    char *computed;        /* hamlie's result, as text: where the verdict is
+                              "differs", the correct expression */
     char *computed_latex;
-    hl_verdict verdict;    /* computed: printed == computed, decided exactly */
-    char *how;             /* how it was checked (two computations, closed form) */
+    hl_verdict verdict;    /* computed: printed - computed == 0, decided exactly */
+    char *how;             /* how it was checked (two computations, closed form);
+                              a cross-check that failed says DIFFERS, DISAGREE,
+                              FAILED or ": NO" in capitals */
 } hl_paper_formula;
 
 typedef struct hl_paper_formulas {
@@ -100,6 +104,7 @@ typedef enum hl_paper_kind {
     HL_PAPER_REL
 } hl_paper_kind;
 
+struct hl_alg;
 struct hl_paper_work; /* formulas.c's computations, shared by the rows */
 
 typedef struct hl_paper_formula_row {
@@ -127,7 +132,11 @@ hl_status hl_paper_formulas_compute_rows(hl_paper_formulas *out,
 /* ---- the report ---------------------------------------------------------- */
 
 /* dir/report.md and dir/report.tex (a fragment to \input): the formula table
- * and the figures (figs may be NULL: no figure section). */
+ * and the figures (figs may be NULL: no figure section), each figure with its
+ * closed-form check; Markdown shows the png (else the first format), LaTeX
+ * includes the pdf (else the first format).  dir is created if missing (with
+ * its parents).  Each file is written to a temporary name in dir and renamed.
+ * HL_EIO when dir or a file cannot be written; HL_EINVAL for dir or fs NULL. */
 hl_status hl_paper_report_write(const char *dir, const hl_paper_formulas *fs,
                                 const hl_paper_figure *figs, const char *formats,
                                 hl_error *err);

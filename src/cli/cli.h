@@ -119,5 +119,6 @@ int cmd_run(int argc, char **argv); extern const char cmd_run_help[];
 int cmd_schemes(int argc, char **argv); extern const char cmd_schemes_help[];
 int cmd_plot(int argc, char **argv); extern const char cmd_plot_help[];
 int cmd_errors(int argc, char **argv); extern const char cmd_errors_help[];
+int cmd_reproduce(int argc, char **argv); extern const char cmd_reproduce_help[];
 
 #endif
