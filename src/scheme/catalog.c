@@ -77,8 +77,17 @@ const hl_scheme_info *hl_scheme_catalog(int i)
     return i >= 0 && i < NCAT ? &catalog[i].info : NULL;
 }
 
+/* Names a user may reasonably type for a catalog scheme: plain Störmer–Verlet
+ * is the velocity (kick-drift-kick) form, as in HLW and most codes. */
+static const struct {
+    const char *alias, *name;
+} aliases[] = {{"stormer-verlet", "stormer-verlet-kdk"}, {"verlet", "stormer-verlet-kdk"}};
+
 static const entry *find(const char *name)
 {
+    for (size_t i = 0; i < sizeof aliases / sizeof aliases[0]; i++)
+        if (strcmp(aliases[i].alias, name) == 0)
+            name = aliases[i].name;
     for (int i = 0; i < NCAT; i++)
         if (strcmp(catalog[i].info.name, name) == 0)
             return &catalog[i];
