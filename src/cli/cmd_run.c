@@ -14,6 +14,7 @@
 
 #include "cli/cli.h"
 #include "hamlie/run.h"
+#include "hamlie/runplot.h"
 
 const char cmd_run_help[] =
     "usage: hamlie run -H FORMULA (--scheme NAME | --map MAP | --equations EQS)\n"
@@ -42,6 +43,10 @@ const char cmd_run_help[] =
     "                       order log(e1/e2)/log(D1/D2) of consecutive steps; e is\n"
     "                       the max over steps of |z_n - z(t_n)| (and at t)\n"
     "  --out FILE           write the CSV to FILE (FILE.tmp, renamed at the end)\n"
+    "  --plot DIR           also draw the run's figures into DIR: phase portraits,\n"
+    "                       coordinates, |H - H0| and sigma (log), each observer\n"
+    "                       (as hamlie plot does from the CSV; rows as --every)\n"
+    "  --format png,svg,pdf the figures' formats (default png)\n"
     "  --pairs, --param     as for every command\n"
     "  --json               print a JSON summary (with --out the CSV goes to FILE,\n"
     "                       without it no CSV is written)\n"
@@ -63,7 +68,7 @@ const char cmd_run_help[] =
 
 /* The options proper to run. */
 typedef struct run_opts {
-    const char *scheme, *equations, *init, *out, *orders;
+    const char *scheme, *equations, *init, *out, *orders, *plot, *formats;
     const char *dt_s, *t_s, *tol_s, *every_s, *digits_s;
     const char **observe;
     int nobserve, no_ref;
@@ -82,8 +87,10 @@ static void found_opt(void *arg, int k, const char *value)
     else if (k == 10) {
         r->observe = hl_xrealloc(r->observe, (size_t)(r->nobserve + 1) * sizeof *r->observe);
         r->observe[r->nobserve++] = value;
-    } else
+    } else if (k == 11)
         r->no_ref = 1;
+    else
+        *(k == 12 ? &r->plot : &r->formats) = value;
 }
 
 /* run's own options (in found_opt's order; --observe repeats); the rest,
@@ -93,7 +100,8 @@ static int take_opts(run_opts *r, int *argc, char **argv, const cli_command *cmd
     static const cli_own own[] = {
         {"--scheme", 0}, {"--equations", 0}, {"--init", 0},  {"--out", 0},
         {"--orders", 0}, {"--dt", 0},        {"--t", 0},     {"--tol", 0},
-        {"--every", 0},  {"--digits", 0},    {"--observe", 0}, {"--no-reference", 1}};
+        {"--every", 0},  {"--digits", 0},    {"--observe", 0}, {"--no-reference", 1},
+        {"--plot", 0},   {"--format", 0}};
     return cli_take_own(argc, argv, own, (int)(sizeof own / sizeof own[0]), found_opt, r, cmd);
 }
 
@@ -126,6 +134,10 @@ static int check_opts(run_opts *r, const cli_opts *o, const cli_command *cmd)
         if (r->scheme == NULL || strcmp(r->scheme, "lie") != 0 || r->orders != NULL)
             return cli_usage(cmd, "--digits is for the adaptive integrator: --scheme lie");
     }
+    if (r->formats != NULL && r->plot == NULL)
+        return cli_usage(cmd, "--format is for the figures of --plot DIR");
+    if (r->plot != NULL && (r->orders != NULL || r->digits_s != NULL))
+        return cli_usage(cmd, "--plot draws one run in double: not with --orders or --digits");
     if (r->init == NULL)
         return cli_usage(cmd, "missing --init: the initial point, e.g. --init x=1,p=0");
     if (r->t_s == NULL)
@@ -165,6 +177,8 @@ typedef struct csv {
     int n2, nobs, sigma;
     int io_error;
     long rows;
+    hl_runplot *plot; /* --plot: the rows kept for the figures, or NULL */
+    double *plot_row; /* 1 + n2 + 1 + sigma + nobs values */
     /* progress */
     int progress;
     long nsteps, last_k;
@@ -225,10 +239,32 @@ static void progress(csv *c, long k)
             100.0 * (double)k / (double)(c->nsteps > 0 ? c->nsteps : 1));
 }
 
+/* A row for the figures, in the CSV's column order. */
+static int plot_row(csv *c, const hl_run_row *row)
+{
+    double *v = c->plot_row;
+    int n = 0;
+    v[n++] = row->t;
+    for (int i = 0; i < c->n2; i++)
+        v[n++] = row->z[i];
+    v[n++] = row->H;
+    if (c->sigma)
+        v[n++] = row->sigma;
+    for (int i = 0; i < c->nobs; i++)
+        v[n++] = row->obs[i];
+    hl_error err;
+    return hl_runplot_add_row(c->plot, v, &err);
+}
+
 static int csv_row(const hl_run_row *row, void *arg)
 {
     csv *c = arg;
     progress(c, row->k);
+    if (c->plot != NULL) {
+        int st = plot_row(c, row);
+        if (st != HL_OK)
+            return st;
+    }
     if (c->fp == NULL)
         return 0;
     hl_buf *b = &c->buf;
@@ -265,6 +301,52 @@ static void csv_header(csv *c, hl_system *sys, const run_opts *r)
         csv_field(&c->buf, r->observe[i]);
     }
     hl_buf_putc(&c->buf, '\n');
+}
+
+/* ---- --plot --------------------------------------------------------------- */
+
+/* The figures' store, with the CSV's columns; the label names the scheme. */
+static void plot_open(csv *c, hl_system *sys, const run_opts *r, const cli_opts *o)
+{
+    int N = hl_system_ndof(sys), n = 0;
+    const char **names = hl_xmalloc((size_t)(2 * N + 3 + r->nobserve) * sizeof *names);
+    names[n++] = "t";
+    for (int i = 0; i < 2 * N; i++)
+        names[n++] = i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N);
+    names[n++] = "H";
+    if (c->sigma)
+        names[n++] = "sigma";
+    for (int i = 0; i < r->nobserve; i++)
+        names[n++] = r->observe[i];
+    const char *label = r->scheme ? r->scheme : o->map ? "map" : "equations";
+    c->plot = hl_runplot_new(label, n, names);
+    c->plot_row = hl_xmalloc((size_t)n * sizeof *c->plot_row);
+    free(names);
+}
+
+/* Draw the figures of a completed run; returns the number of files or -1. */
+static int plot_write(csv *c, const run_opts *r)
+{
+    hl_runplot_opts po = HL_RUNPLOT_OPTS_DEFAULT;
+    if (r->formats != NULL)
+        po.formats = r->formats;
+    int written = 0;
+    hl_error err;
+    hl_error_clear(&err);
+    if (hl_runplot_write(&c->plot, 1, r->plot, &po, &written, &err) != HL_OK) {
+        hl_error_prefix(&err, "in --plot");
+        cli_fail(&err);
+        return -1;
+    }
+    return written;
+}
+
+static void plot_close(csv *c)
+{
+    hl_runplot_free(c->plot);
+    free(c->plot_row);
+    c->plot = NULL;
+    c->plot_row = NULL;
 }
 
 /* ---- JSON (hand-written: report.h has no writer for doubles) ------------- */
@@ -416,6 +498,8 @@ static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts
         c.fp = NULL;
     else
         csv_header(&c, sys, r);
+    if (r->plot != NULL)
+        plot_open(&c, sys, r, o);
     hl_run_set_reference(run, !r->no_ref, r->tol);
     hl_run_set_jit(run, 1);
     c.progress = isatty(2);
@@ -446,7 +530,18 @@ static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts
             close_out(&c, r, tmpname, 0, &s);
         rc = CLI_ERROR;
     } else {
-        rc = want_csv ? close_out(&c, r, tmpname, 1, &s) : CLI_OK;
+        /* the figures first: if they cannot be drawn, no CSV file is left */
+        int figures = c.plot != NULL ? plot_write(&c, r) : 0;
+        if (figures < 0) {
+            if (tmpname != NULL) {
+                fclose(c.fp);
+                remove(tmpname);
+            }
+            rc = CLI_ERROR;
+        } else
+            rc = want_csv ? close_out(&c, r, tmpname, 1, &s) : CLI_OK;
+        if (rc == CLI_OK && c.plot != NULL && o->format != CLI_JSON)
+            fprintf(stderr, "hamlie: drew %d figure files in %s\n", figures, r->plot);
         if (rc == CLI_OK && (o->format == CLI_JSON || r->out != NULL)) {
             hl_buf out;
             hl_buf_init(&out);
@@ -468,6 +563,9 @@ static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts
                 jkey(&out, "taylor_steps", 0);
                 hl_buf_printf(&out, "%ld", s.ref_steps);
                 jkv_str(&out, "out", r->out);
+                jkv_str(&out, "plot", r->plot);
+                jkey(&out, "figure_files", 0);
+                hl_buf_printf(&out, "%d", figures);
                 jkv_num(&out, "wall_time_s", wall);
                 hl_buf_puts(&out, "\n}\n");
             } else {
@@ -481,6 +579,7 @@ static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts
         }
     }
     free(tmpname);
+    plot_close(&c);
     hl_buf_clear(&c.buf);
     return rc;
 }
