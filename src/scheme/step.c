@@ -240,7 +240,11 @@ static int compile_newton(hl_scheme_stepper *st, const hl_scheme *s, const hl_ex
     const hl_expr **outs = hl_xmalloc((size_t)(m + m * m) * sizeof *outs);
     for (int i = 0; i < m; i++)
         outs[i] = hl_sub(pool, lhs[i], rhs[i]);
-    simplify(outs, s, pool);
+    /* Not after quadrature: an integrand is regular where the unknowns meet
+     * the current point, and over a common denominator the Gauss sum of a
+     * rational H swells into a huge polynomial with huge coefficients. */
+    if (s->nint == 0)
+        simplify(outs, s, pool);
     for (int i = 0; i < m; i++) {
         for (int u = 0; u < m; u++)
             outs[m + i * m + u] = hl_expr_diff(pool, outs[i], s->unknown[u]);

@@ -87,7 +87,13 @@ typedef struct comp {
     int capregs, capcode, cappro, capleaf;
     const char *const *inputs;
     hl_error *err;
+    int depth; /* of compile's recursion */
 } comp;
+
+/* Generated expressions (derivatives, expansions) can be far deeper than
+ * anything the parser accepts; the recursion stops here instead of the
+ * stack overflowing. */
+#define COMPILE_MAX_DEPTH 10000
 
 static int new_reg(comp *c, int isconst)
 {
@@ -463,6 +469,8 @@ static void compile_muldiv(comp *c, int div, int a, const fmpq_t sa, int b, cons
     fmpq_clear(qb);
 }
 
+static int compile_node(comp *c, const hl_expr *e, int *reg, fmpq_t s);
+
 static int compile(comp *c, const hl_expr *e, int *reg, fmpq_t s)
 {
     int v = map_get(&c->nodes, (uintptr_t)e, 0);
@@ -471,6 +479,19 @@ static int compile(comp *c, const hl_expr *e, int *reg, fmpq_t s)
         fmpq_set(s, c->vscale + v);
         return HL_OK;
     }
+    if (c->depth >= COMPILE_MAX_DEPTH)
+        return hl_error_set(c->err, HL_ELIMIT, NULL, -1, 0,
+                            "an expression nested more than %d deep cannot be compiled",
+                            COMPILE_MAX_DEPTH);
+    c->depth++;
+    int status = compile_node(c, e, reg, s);
+    c->depth--;
+    return status;
+}
+
+/* compile() for a node not compiled yet. */
+static int compile_node(comp *c, const hl_expr *e, int *reg, fmpq_t s)
+{
     int a = -1, b = -1, r = -1, status = HL_OK;
     fmpq_t sa, sb;
     fmpq_init(sa);
