@@ -94,7 +94,8 @@ enum {
     HL_SCHEME_PRESERVES_H = 1 << 1, /* H(Q, P) = H(q, p) exactly */
     HL_SCHEME_IMPLICIT = 1 << 2,    /* implicit for a general H */
     HL_SCHEME_SEPARABLE = 1 << 3,   /* explicit only when H = T(p) + V(q) */
-    HL_SCHEME_OSCILLATOR = 1 << 4   /* only for H = (p^2 + q^2)/2, one dof */
+    HL_SCHEME_OSCILLATOR = 1 << 4,  /* only for H = (p^2 + q^2)/2, one dof */
+    HL_SCHEME_QUADRATIC = 1 << 5    /* only for H quadratic in the phase variables */
 };
 
 #define HL_SCHEME_EXACT (-1)
@@ -151,6 +152,17 @@ int hl_scheme_lie(hl_scheme **out, int n, hl_system *sys, hl_error *err);
  * language scheme `text` (c_i expressions: "1/(2 - 2^(1/3))"). */
 int hl_scheme_compose(hl_scheme **out, const char *name, const char *text, int r,
                       const char *const *c, hl_system *sys, hl_error *err);
+
+/* The exact flow exp(D g) z in closed form when the field is affine (H of
+ * degree <= 2 in the phase variables; parameters allowed) and H couples no
+ * two pairs: per pair cos/sin of sqrt(w2) D, cosh/sinh for a rational
+ * w2 < 0, polynomials for w2 = 0 (w2 = H_qq H_pp - H_qp^2).  images: 2N
+ * elements (Q_1..Q_N, P_1..P_N).  HL_EINVAL when H is not quadratic,
+ * HL_EUNSUP when it couples pairs (the message names them).
+ * _map writes the same as a map "x' = ...; p' = ..." (hl_scheme_from_map
+ * reads it back); *map is malloc'd. */
+int hl_scheme_linear_flow(hl_alg *images, hl_system *sys, hl_error *err);
+int hl_scheme_linear_flow_map(char **map, hl_system *sys, hl_error *err);
 
 /* ---- the symbolic reading ---------------------------------------------- */
 

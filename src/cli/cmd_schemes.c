@@ -52,6 +52,7 @@ static void write_json(hl_buf *out)
         hl_json_kv_bool(&j, "implicit", (in->flags & HL_SCHEME_IMPLICIT) != 0);
         hl_json_kv_bool(&j, "explicit_if_separable", (in->flags & HL_SCHEME_SEPARABLE) != 0);
         hl_json_kv_bool(&j, "oscillator_only", (in->flags & HL_SCHEME_OSCILLATOR) != 0);
+        hl_json_kv_bool(&j, "quadratic_only", (in->flags & HL_SCHEME_QUADRATIC) != 0);
         hl_json_kv_string(&j, "description", in->description);
         hl_json_object_end(&j);
     }

@@ -12,6 +12,7 @@
 #define S_IMPL HL_SCHEME_IMPLICIT
 #define S_SEP HL_SCHEME_SEPARABLE
 #define S_OSC HL_SCHEME_OSCILLATOR
+#define S_QUAD HL_SCHEME_QUADRATIC
 
 typedef struct entry {
     hl_scheme_info info;
@@ -59,6 +60,11 @@ static const entry catalog[] = {
       HL_SCHEME_EXACT,
       S_SYMP | S_H | S_OSC},
      "Q = q*cos(D) + p*sin(D); P = p*cos(D) - q*sin(D)"},
+    {{"exact",
+      "the exact flow in closed form, for H quadratic in the phase variables with "
+      "uncoupled pairs (any N; parameters allowed)",
+      HL_SCHEME_EXACT, S_SYMP | S_H | S_QUAD},
+     NULL},
     {{"paper-euler", "the paper's Euler method: (Q-q)/D = Hp(q, p), (P-p)/D = -Hq(q, p)", 1, 0},
      "(Q-q)/D = Hp(q, p); (P-p)/D = -Hq(q, p)"},
     {{"paper-dg",
@@ -435,6 +441,17 @@ static int is_oscillator(hl_system *sys)
     return yes;
 }
 
+/* The exact flow of a quadratic H (linear_flow.c), as a map. */
+static int exact_flow(hl_scheme **out, hl_system *sys, hl_error *err)
+{
+    char *map = NULL;
+    int st = hl_scheme_linear_flow_map(&map, sys, err);
+    if (st == HL_OK)
+        st = hl_scheme_from_map(out, map, sys, err);
+    free(map);
+    return st;
+}
+
 int hl_scheme_new(hl_scheme **out, const char *name, int param, hl_system *sys,
                   hl_error *err)
 {
@@ -471,6 +488,8 @@ int hl_scheme_new(hl_scheme **out, const char *name, int param, hl_system *sys,
         return itoh_abe(out, sys, err);
     if (strcmp(name, "gonzalez") == 0)
         return gonzalez(out, sys, err);
+    if (strcmp(name, "exact") == 0)
+        return exact_flow(out, sys, err);
     if (strcmp(name, "yoshida4") == 0) {
         /* x1 = 1/(2 - 2^(1/3)), x0 = -2^(1/3) x1 */
         static const char *const c[] = {"1/(2 - 2^(1/3))", "-2^(1/3)/(2 - 2^(1/3))",

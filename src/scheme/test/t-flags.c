@@ -122,7 +122,7 @@ int main(void)
         CHECK(info->description && strlen(info->description) > 10);
         for (int j = 0; j < i; j++)
             CHECK(strcmp(hl_scheme_catalog(j)->name, info->name) != 0);
-        if (info->flags & HL_SCHEME_OSCILLATOR) {
+        if (info->flags & (HL_SCHEME_OSCILLATOR | HL_SCHEME_QUADRATIC)) {
             claims(osc, info, "oscillator");
             continue;
         }
