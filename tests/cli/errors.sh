@@ -65,7 +65,7 @@ case_ "json and latex"          - "together"            -- generator -H '(p^2+x^
 case_ "unknown option"          - "unknown option"      -- generator -H '(p^2+x^2)/2' --colour
 case_ "option missing value"    - "needs a value"       -- generator -H
 case_ "option of another command" - "does not apply"    -- generator -H '(p^2+x^2)/2' --order 3
-case_ "unknown command"         - "unknown command"     -- reproduce
+case_ "unknown command"         - "unknown command"     -- frobnicate
 case_ "no command"              - "usage"               --
 
 finish
