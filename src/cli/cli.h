@@ -120,5 +120,6 @@ int cmd_schemes(int argc, char **argv); extern const char cmd_schemes_help[];
 int cmd_plot(int argc, char **argv); extern const char cmd_plot_help[];
 int cmd_errors(int argc, char **argv); extern const char cmd_errors_help[];
 int cmd_reproduce(int argc, char **argv); extern const char cmd_reproduce_help[];
+int cmd_exact(int argc, char **argv); extern const char cmd_exact_help[];
 
 #endif

@@ -87,6 +87,8 @@ static const cli_command commands[] = {
     {"plot", cmd_plot, "figures of runs (CSV from hamlie run), compared", cmd_plot_help},
     {"errors", cmd_errors, "error analysis of a scheme: v_k, order, K(D) (paper §4)",
      cmd_errors_help},
+    {"exact", cmd_exact, "the exact scheme of a quadratic H in closed form, checked (§3)",
+     cmd_exact_help},
     {"reproduce", cmd_reproduce, "the paper's figures and formulas, regenerated and checked",
      cmd_reproduce_help},
 };

@@ -1,0 +1,48 @@
+#!/bin/bash
+# hamlie exact, and the catalog's 'exact' through run and errors: the closed
+# form against flows solved by hand (sympy compares), the three checks
+# reported true, every error field zero, a run at round-off against the
+# Taylor reference; H not quadratic and coupled pairs refused (exit 2).
+# usage (from the repo root): bash tests/cli/exact.sh path/to/hamlie
+set -u
+HAMLIE=${1:?usage: exact.sh path/to/hamlie}
+. "$(dirname "$0")/lib/harness.sh"
+
+ANISO='(px^2+py^2)/2+(x^2+4*y^2)/2'
+
+run 0 exact -H "$ANISO"
+has_line '  Y = y*cos(2*D) + py*sin(2*D)/2'
+has_line 'canonical: yes'
+has_line 'two steps of D = one step of 2D: yes'
+run 0 exact -H "$ANISO" --json
+py 'm = d["map"]
+assert same(m["X"], "x*cos(D) + px*sin(D)") and same(m["PY"], "py*cos(2*D) - 2*y*sin(2*D)")
+assert d["equals_lie_series"] and d["canonical"] and d["two_steps_equal_one_of_2D"]'
+# hyperbolic: cosh and sinh, whatever the printed form
+run 0 exact -H '(p^2-x^2)/2' --json
+py 'assert simplify((S(d["map"]["X"]) - S("x*cosh(D) + p*sinh(D)")).rewrite(sympy.exp)) == 0'
+# uniform field, symbolic g
+run 0 exact -H 'p^2/2 + g*q' --json
+py 'assert same(d["map"]["Q"], "q + D*p - g*D**2/2") and same(d["map"]["P"], "p - g*D")'
+
+run 2 exact -H 'p^2/2 - cos(q)'
+err_has "not quadratic"
+run 2 exact -H '(px^2+py^2)/2 + (x^2+y^2)/2 + x*y'
+err_has "couples the pairs of x and y"
+run 2 exact -H "$ANISO" --order 0
+err_has "--order must be from 1 to 40"
+
+# the same scheme in the catalog: no error field, and a run on the exact flow
+run 0 errors -H "$ANISO" --scheme exact --order 6
+has_line 'v_6 = 0'
+run 0 run -H "$ANISO" --scheme exact --dt 0.5 --t 1000 --init x=1,y=0.3,px=0,py=0.2 --json
+python3 -c 'import json, sys; d = json.load(open(sys.argv[1]))
+assert d["max_error"] < 1e-11 and d["max_abs_dH"] < 1e-11, d' "$tmp/out" && ok ||
+    bad "exact run not at round-off: $(cat "$tmp/out")"
+run 0 schemes --json
+python3 -c 'import json, sys; d = json.load(open(sys.argv[1]))
+e = [s for s in d["schemes"] if s["name"] == "exact"][0]
+assert e["exact"] and e["quadratic_only"] and e["symplectic"] and not e["implicit"]' "$tmp/out" &&
+    ok || bad "schemes: exact not listed as such"
+
+finish
