@@ -148,6 +148,16 @@ size_t hl_figure_nseries(const hl_figure *fig);
 hl_status hl_figure_write(const hl_figure *fig, const char *path, const char *formats,
                           hl_error *err);
 
+/* The number of distinct formats in a list as hl_figure_write reads it
+ * ("png,svg"; spaces and commas between, case-insensitive): HL_EINVAL for
+ * an unknown name or an empty list, so a caller can refuse before writing
+ * anything. */
+hl_status hl_figure_count_formats(int *n, const char *formats, hl_error *err);
+
+/* Create the folder dir and its parents (mkdir -p); HL_EIO naming the part
+ * that cannot be created, or when a file of that name is in the way. */
+hl_status hl_figure_mkdir(const char *dir, hl_error *err);
+
 /* Where the plot box landed: the viewport as fractions of the image (x from
  * the left, y from the bottom) and the world window (on a log axis, y is
  * log10 of the data).  Filled by hl_figure_render_rgb. */

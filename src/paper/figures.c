@@ -388,58 +388,6 @@ hl_status hl_paper_figure_get(hl_figure **fig, hl_paper_figure *info, int i, hl_
     return st;
 }
 
-/* The formats of a list as plot.h reads it ("png,svg", spaces and commas
- * between, case-insensitive; each counted once): HL_EINVAL before anything
- * is written when a name is unknown or none is given. */
-static hl_status count_formats(int *n, const char *formats, hl_error *err)
-{
-    static const char *const known[3] = {"png", "svg", "pdf"};
-    int want[3] = {0, 0, 0};
-    *n = 0;
-    for (const char *p = formats != NULL ? formats : ""; *p;) {
-        while (*p == ' ' || *p == ',')
-            p++;
-        size_t len = strcspn(p, ", ");
-        if (len == 0)
-            break;
-        int k = 0;
-        while (k < 3 && !(len == 3 && strncasecmp(p, known[k], 3) == 0))
-            k++;
-        if (k == 3)
-            return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
-                                "unknown figure format '%.*s' (png, svg, pdf)", (int)len, p);
-        *n += !want[k];
-        want[k] = 1;
-        p += len;
-    }
-    return *n > 0 ? HL_OK : hl_error_set(err, HL_EINVAL, NULL, -1, 0, "no figure format given");
-}
-
-/* mkdir -p */
-static hl_status make_dir(const char *dir, hl_error *err)
-{
-    char *d = hl_xstrdup(dir);
-    for (char *s = d + 1; *s; s++) {
-        if (*s != '/')
-            continue;
-        *s = '\0';
-        if (mkdir(d, 0777) != 0 && errno != EEXIST) {
-            hl_error_set(err, HL_EIO, NULL, -1, 0, "cannot create directory '%s': %s", d,
-                         strerror(errno));
-            free(d);
-            return HL_EIO;
-        }
-        *s = '/';
-    }
-    hl_status st = HL_OK;
-    struct stat sb;
-    if (mkdir(d, 0777) != 0 && !(errno == EEXIST && stat(d, &sb) == 0 && S_ISDIR(sb.st_mode)))
-        st = hl_error_set(err, HL_EIO, NULL, -1, 0, "cannot create directory '%s': %s", d,
-                          errno == EEXIST ? "a file of that name exists" : strerror(errno));
-    free(d);
-    return st;
-}
-
 hl_status hl_paper_figures(hl_paper_figure *figs, const char *dir, const char *formats,
                            hl_error *err)
 {
@@ -447,8 +395,8 @@ hl_status hl_paper_figures(hl_paper_figure *figs, const char *dir, const char *f
     int nfmt;
     if (formats == NULL)
         formats = "png";
-    if (dir != NULL && ((st = count_formats(&nfmt, formats, err)) != HL_OK ||
-                        (st = make_dir(dir, err)) != HL_OK))
+    if (dir != NULL && ((st = hl_figure_count_formats(&nfmt, formats, err)) != HL_OK ||
+                        (st = hl_figure_mkdir(dir, err)) != HL_OK))
         return st;
     traj *tr = hl_xmalloc(S_COUNT * sizeof *tr);
     for (int k = 0; k < S_COUNT && st == HL_OK; k++)

@@ -8,8 +8,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "base/buf.h"
 #include "hamlie/paper.h"
-#include "../base/buf.h"
+#include "hamlie/plot.h"
 
 /* A Markdown table cell: no '|' or newline may break the row. */
 static void md_cell(hl_buf *b, const char *s, int code)
@@ -152,32 +153,6 @@ static void build_tex(hl_buf *b, const hl_paper_formulas *fs, const hl_paper_fig
     }
 }
 
-/* mkdir -p */
-static int make_dir(const char *dir, hl_error *err)
-{
-    char *p = hl_xstrdup(dir);
-    for (char *s = p + 1; ; s++) {
-        if (*s == '/' || *s == '\0') {
-            char c = *s;
-            *s = '\0';
-            if (mkdir(p, 0777) != 0 && errno != EEXIST) {
-                int e = errno;
-                free(p);
-                return hl_error_set(err, HL_EIO, NULL, -1, 0, "cannot create '%s': %s", dir,
-                                    strerror(e));
-            }
-            *s = c;
-            if (c == '\0')
-                break;
-        }
-    }
-    free(p);
-    struct stat st;
-    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode))
-        return hl_error_set(err, HL_EIO, NULL, -1, 0, "'%s' is not a directory", dir);
-    return HL_OK;
-}
-
 /* dir/name through dir/.name.tmp and rename. */
 static int write_atomic(const char *dir, const char *name, const hl_buf *b, hl_error *err)
 {
@@ -211,7 +186,7 @@ hl_status hl_paper_report_write(const char *dir, const hl_paper_formulas *fs,
 {
     if (dir == NULL || fs == NULL)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "no directory or no formulas");
-    int st = make_dir(dir, err);
+    int st = hl_figure_mkdir(dir, err);
     if (st != HL_OK)
         return (hl_status)st;
     hl_buf md, tex;

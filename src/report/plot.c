@@ -840,3 +840,54 @@ hl_status hl_figure_write(const hl_figure *fig, const char *path, const char *fo
             st = write_one(fig, path, k, err);
     return st;
 }
+
+/* ---- files ------------------------------------------------------------- */
+
+/* The formats of a list as plot.h reads it ("png,svg", spaces and commas
+ * between, case-insensitive; each counted once): HL_EINVAL before anything
+ * is written when a name is unknown or none is given. */
+hl_status hl_figure_count_formats(int *n, const char *formats, hl_error *err)
+{
+    static const char *const known[3] = {"png", "svg", "pdf"};
+    int want[3] = {0, 0, 0};
+    *n = 0;
+    for (const char *p = formats != NULL ? formats : ""; *p;) {
+        while (*p == ' ' || *p == ',')
+            p++;
+        size_t len = strcspn(p, ", ");
+        if (len == 0)
+            break;
+        int k = 0;
+        while (k < 3 && !(len == 3 && strncasecmp(p, known[k], 3) == 0))
+            k++;
+        if (k == 3)
+            return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                                "unknown figure format '%.*s' (png, svg, pdf)", (int)len, p);
+        *n += !want[k];
+        want[k] = 1;
+        p += len;
+    }
+    return *n > 0 ? HL_OK : hl_error_set(err, HL_EINVAL, NULL, -1, 0, "no figure format given");
+}
+
+hl_status hl_figure_mkdir(const char *dir, hl_error *err)
+{
+    char *d = hl_xstrdup(dir);
+    hl_status st = HL_OK;
+    for (char *s = d + 1; *s && st == HL_OK; s++) {
+        if (*s != '/')
+            continue;
+        *s = '\0';
+        if (mkdir(d, 0777) != 0 && errno != EEXIST)
+            st = hl_error_set(err, HL_EIO, NULL, -1, 0, "cannot create directory '%s': %s", d,
+                              strerror(errno));
+        *s = '/';
+    }
+    struct stat sb;
+    if (st == HL_OK && mkdir(d, 0777) != 0 &&
+        !(errno == EEXIST && stat(d, &sb) == 0 && S_ISDIR(sb.st_mode)))
+        st = hl_error_set(err, HL_EIO, NULL, -1, 0, "cannot create directory '%s': %s", d,
+                          errno == EEXIST ? "a file of that name exists" : strerror(errno));
+    free(d);
+    return st;
+}

@@ -776,55 +776,6 @@ void hl_runplot_figures_free(hl_figure **figs, char **names, int nfig)
 
 /* ---- writing ------------------------------------------------------------- */
 
-/* The formats of a list as plot.h reads it ("png,svg", spaces and commas
- * between, case-insensitive; each counted once): HL_EINVAL before anything
- * is written when a name is unknown or none is given. */
-static hl_status count_formats(int *n, const char *formats, hl_error *err)
-{
-    static const char *const known[3] = {"png", "svg", "pdf"};
-    int want[3] = {0, 0, 0};
-    *n = 0;
-    for (const char *p = formats != NULL ? formats : ""; *p;) {
-        while (*p == ' ' || *p == ',')
-            p++;
-        size_t len = strcspn(p, ", ");
-        if (len == 0)
-            break;
-        int k = 0;
-        while (k < 3 && !(len == 3 && strncasecmp(p, known[k], 3) == 0))
-            k++;
-        if (k == 3)
-            return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
-                                "unknown figure format '%.*s' (png, svg, pdf)", (int)len, p);
-        *n += !want[k];
-        want[k] = 1;
-        p += len;
-    }
-    return *n > 0 ? HL_OK : hl_error_set(err, HL_EINVAL, NULL, -1, 0, "no figure format given");
-}
-
-static hl_status make_dir(const char *dir, hl_error *err)
-{
-    char *d = hl_xstrdup(dir);
-    hl_status st = HL_OK;
-    for (char *s = d + 1; *s && st == HL_OK; s++) {
-        if (*s != '/')
-            continue;
-        *s = '\0';
-        if (mkdir(d, 0777) != 0 && errno != EEXIST)
-            st = hl_error_set(err, HL_EIO, NULL, -1, 0, "cannot create directory '%s': %s", d,
-                              strerror(errno));
-        *s = '/';
-    }
-    struct stat sb;
-    if (st == HL_OK && mkdir(d, 0777) != 0 &&
-        !(errno == EEXIST && stat(d, &sb) == 0 && S_ISDIR(sb.st_mode)))
-        st = hl_error_set(err, HL_EIO, NULL, -1, 0, "cannot create directory '%s': %s", d,
-                          errno == EEXIST ? "a file of that name exists" : strerror(errno));
-    free(d);
-    return st;
-}
-
 hl_status hl_runplot_write(hl_runplot *const *runs, int nruns, const char *dir,
                            const hl_runplot_opts *opts, int *written, hl_error *err)
 {
@@ -832,7 +783,7 @@ hl_status hl_runplot_write(hl_runplot *const *runs, int nruns, const char *dir,
         *written = 0;
     const char *formats = opts != NULL && opts->formats != NULL ? opts->formats : "png";
     int nfmt;
-    hl_status st = count_formats(&nfmt, formats, err);
+    hl_status st = hl_figure_count_formats(&nfmt, formats, err);
     if (st != HL_OK)
         return st;
     if (dir == NULL || *dir == '\0')
@@ -842,7 +793,7 @@ hl_status hl_runplot_write(hl_runplot *const *runs, int nruns, const char *dir,
     int nfig;
     if ((st = hl_runplot_figures(&figs, &names, &nfig, runs, nruns, opts, err)) != HL_OK)
         return st;
-    if ((st = make_dir(dir, err)) != HL_OK) {
+    if ((st = hl_figure_mkdir(dir, err)) != HL_OK) {
         hl_runplot_figures_free(figs, names, nfig);
         return st;
     }
