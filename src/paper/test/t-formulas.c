@@ -9,12 +9,16 @@
  * 3. Computed values checked independently at a numeric point: Euler is
  *    sqrt(1+D^2) R(atan D), the DG is R(2 atan(D/2)); the Taylor
  *    coefficients of these closed forms give v_k by hand.
+ * 4. hamlie's computed maps and scalars, parsed back and evaluated, against
+ *    numerics independent of formulas.c (the DG's implicit equations solved
+ *    by fixed-point iteration, a classical RK4 step, tau read off a step).
  */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "hamlie/expr.h"
 #include "hamlie/paper.h"
 #include "hl_test.h"
 
@@ -32,6 +36,37 @@ static int row_index(const hl_paper_formula_row *rows, int n, const char *id)
         if (strcmp(rows[i].id, id) == 0)
             return i;
     return -1;
+}
+
+/* Evaluate a computed text (hamlie's syntax, symbols x, p, D) at a point. */
+static double eval_text(const char *src, double x, double p, double D)
+{
+    static const char *const names[] = {"x", "p", "D"};
+    double vals[3] = {x, p, D}, v = NAN;
+    hl_error err = {0};
+    hl_pool *pool = hl_pool_new();
+    const hl_expr *e;
+    if (hl_parse(&e, pool, src, &err) != HL_OK ||
+        hl_expr_eval_d(&v, e, 3, names, vals, &err) != HL_OK)
+        v = NAN;
+    hl_pool_free(pool);
+    return v;
+}
+
+/* A computed map "X = a, P = b" evaluated at (x, p, D): 1 on success. */
+static int eval_map(double *X, double *P, const char *map, double x, double p, double D)
+{
+    const char *sep = strstr(map, ", P = ");
+    if (strncmp(map, "X = ", 4) != 0 || sep == NULL)
+        return 0;
+    size_t n = (size_t)(sep - (map + 4));
+    char *a = malloc(n + 1);
+    memcpy(a, map + 4, n);
+    a[n] = 0;
+    *X = eval_text(a, x, p, D);
+    *P = eval_text(sep + 6, x, p, D);
+    free(a);
+    return isfinite(*X) && isfinite(*P);
 }
 
 int main(void)
@@ -149,6 +184,49 @@ int main(void)
         double h = 1e-5, dth = (2 * atan((D + h) / 2) - 2 * atan((D - h) / 2)) / (2 * h);
         CHECK(fabs(dth - 4 / (4 + D * D)) < 1e-9);
         CHECK(fabs(dth - (1 + D * D / (4 + D * D))) > 1e-2); /* the print is off */
+    }
+    /* 4. hamlie's computed values, read back and evaluated, against numerics that
+     * share nothing with formulas.c: the DG step solved from its implicit
+     * equations (X-x)/D = (P+p)/2, (P-p)/D = -(X+x)/2 by fixed-point iteration,
+     * Euler's step, a classical RK4 step; the DG's angle tau per step read off
+     * the stepped point, hence W = tau - D, T - t = tau and D' = 2 tan(tau)
+     * (2 atan(D'/2) = 2 tau). */
+    {
+        double D = 0.3, x = 0.7, p = -0.4, X = x, P = p, cX, cP;
+        for (int it = 0; it < 200; it++) {
+            double nX = x + D * (P + p) / 2, nP = p - D * (X + x) / 2;
+            X = nX, P = nP;
+        }
+        const hl_paper_formula *r = find(&fs, "dg-map");
+        CHECK(r != NULL && eval_map(&cX, &cP, r->computed, x, p, D));
+        CHECK(r != NULL && fabs(cX - X) < 1e-13 && fabs(cP - P) < 1e-13);
+        r = find(&fs, "euler-map");
+        CHECK(r != NULL && eval_map(&cX, &cP, r->computed, x, p, D));
+        CHECK(r != NULL && fabs(cX - (x + D * p)) < 1e-14 && fabs(cP - (p - D * x)) < 1e-14);
+        /* RK4 on x' = p, p' = -x */
+        double k1x = p, k1p = -x;
+        double k2x = p + D / 2 * k1p, k2p = -(x + D / 2 * k1x);
+        double k3x = p + D / 2 * k2p, k3p = -(x + D / 2 * k2x);
+        double k4x = p + D * k3p, k4p = -(x + D * k3x);
+        double rX = x + D / 6 * (k1x + 2 * k2x + 2 * k3x + k4x);
+        double rP = p + D / 6 * (k1p + 2 * k2p + 2 * k3p + k4p);
+        r = find(&fs, "rk4-map");
+        CHECK(r != NULL && eval_map(&cX, &cP, r->computed, x, p, D));
+        CHECK(r != NULL && fabs(cX - rX) < 1e-14 && fabs(cP - rP) < 1e-14);
+        /* tau from the DG step of (1, 0): (cos tau, -sin tau) */
+        double X1 = 1, P1 = 0;
+        for (int it = 0; it < 200; it++) {
+            double nX = 1 + D * P1 / 2, nP = -D * (X1 + 1) / 2;
+            X1 = nX, P1 = nP;
+        }
+        double tau = atan2(-P1, X1);
+        r = find(&fs, "dg-W");
+        CHECK(r != NULL && fabs(eval_text(r->computed, x, p, D) - (tau - D)) < 1e-13);
+        CHECK(r != NULL && fabs(eval_text(r->printed, x, p, D) - (tau - D)) > 1e-4);
+        r = find(&fs, "dg-T");
+        CHECK(r != NULL && fabs(eval_text(r->computed, x, p, D) - tau) < 1e-13);
+        r = find(&fs, "dg-two-steps");
+        CHECK(r != NULL && fabs(eval_text(r->computed, x, p, D) - 2 * tan(tau)) < 1e-12);
     }
     hl_paper_formulas_clear(&fs);
     hl_paper_formulas_clear(NULL);
