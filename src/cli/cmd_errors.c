@@ -2,11 +2,13 @@
  * ways, the order, the leading error classified, K(D), corrected schemes.
  * Its own options (--scheme, --equations, --correct) are taken out of argv
  * before the common parser sees the rest, as run does. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli/cli.h"
 #include "hamlie/analysis.h"
+#include "hamlie/numerr.h"
 #include "hamlie/scheme.h"
 
 #define ERRORS_MAX_ORDER 40
@@ -16,6 +18,8 @@
 const char cmd_errors_help[] =
     "usage: hamlie errors -H FORMULA (--scheme NAME | --map MAP | --equations EQS)\n"
     "                     [--order N] [--correct M] [--invariants-degree d] [options]\n"
+    "       hamlie errors -H FORMULA (--scheme NAME | --map MAP | --equations EQS)\n"
+    "                     --numeric --at 'q=1.3,p=0' [--order N] [--json]\n"
     "\n"
     "Error analysis of a one-step scheme psi_D (paper §4).  The error fields v_k,\n"
     "k = 2..N, are defined by  psi_D - exp(D g) = sum_k D^k/k! v_k  and computed two\n"
@@ -38,6 +42,13 @@ const char cmd_errors_help[] =
     "  --invariants-degree d  search polynomial invariants of the leading field up\n"
     "                       to degree d, and Darboux ratios for a linear field\n"
     "                       (0..8, default 2; 0: no search)\n"
+    "  --numeric            numeric analysis at the point --at, in double precision:\n"
+    "                       the values v_k(z) and K(D)'s Taylor coefficients at z,\n"
+    "                       by Taylor mode (no symbolic expansion; any scheme,\n"
+    "                       implicit ones solved order by order), the order and\n"
+    "                       the leading k (|v_k(z)| above 1e-10 k! times the size\n"
+    "                       of the D^k coefficients: round-off).  --order 2..60\n"
+    "  --at 'q=1.3,p=0'     the point: every phase variable, a number each\n"
     "  --pairs x:px,y:py    the canonical pairs\n"
     "  --param k=2          give a parameter a value (repeatable)\n"
     "  --json               print a JSON object (schema: docs/json.md)\n"
@@ -49,23 +60,27 @@ const char cmd_errors_help[] =
     "Example: hamlie errors -H '(p^2+x^2)/2' --scheme euler --order 7\n";
 
 typedef struct err_opts {
-    const char *scheme, *equations, *correct_s, *invdeg_s;
-    int correct, invdeg;
+    const char *scheme, *equations, *correct_s, *invdeg_s, *at;
+    int correct, invdeg, numeric;
 } err_opts;
 
 static void found_opt(void *arg, int k, const char *value)
 {
     err_opts *r = arg;
-    const char **slot[] = {&r->scheme, &r->equations, &r->correct_s, &r->invdeg_s};
-    *slot[k] = value;
+    const char **slot[] = {&r->scheme, &r->equations, &r->correct_s, &r->invdeg_s, &r->at};
+    if (k == 5)
+        r->numeric = 1;
+    else
+        *slot[k] = value;
 }
 
 /* errors' own options; the rest goes to cli_parse. */
 static int take_opts(err_opts *r, int *argc, char **argv, const cli_command *cmd)
 {
     static const cli_own own[] = {
-        {"--scheme", 0}, {"--equations", 0}, {"--correct", 0}, {"--invariants-degree", 0}};
-    return cli_take_own(argc, argv, own, 4, found_opt, r, cmd);
+        {"--scheme", 0},  {"--equations", 0},         {"--correct", 0},
+        {"--invariants-degree", 0}, {"--at", 0}, {"--numeric", 1}};
+    return cli_take_own(argc, argv, own, 6, found_opt, r, cmd);
 }
 
 static int check_opts(err_opts *r, cli_opts *o, const cli_command *cmd)
@@ -80,9 +95,16 @@ static int check_opts(err_opts *r, cli_opts *o, const cli_command *cmd)
                                         : "give only one of --scheme, --map and --equations");
     if (!o->have_order)
         o->order = 4;
-    if (o->order < 2 || o->order > ERRORS_MAX_ORDER)
-        return cli_usage(cmd, "--order must be between 2 and %d, not %d", ERRORS_MAX_ORDER,
-                         o->order);
+    if (r->numeric && r->at == NULL)
+        return cli_usage(cmd, "--numeric needs the point: --at 'q=1.3,p=0'");
+    if (!r->numeric && r->at != NULL)
+        return cli_usage(cmd, "--at is the point of the numeric analysis: add --numeric");
+    if (r->numeric && (r->correct_s != NULL || r->invdeg_s != NULL))
+        return cli_usage(cmd, "--correct and --invariants-degree are symbolic: not with "
+                              "--numeric");
+    int maxn = r->numeric ? HL_NUMERR_MAX_ORDER : ERRORS_MAX_ORDER;
+    if (o->order < 2 || o->order > maxn)
+        return cli_usage(cmd, "--order must be between 2 and %d, not %d", maxn, o->order);
     if (r->correct_s != NULL) {
         char *end;
         long v = strtol(r->correct_s, &end, 10);
@@ -167,10 +189,9 @@ static int analyse(hl_errors *e, hl_errfield *F, int *have_F, const hl_series *p
     return st;
 }
 
-static int compute(result *R, const err_opts *r, const cli_opts *o, hl_error *err)
+static int make_scheme(result *R, const err_opts *r, const cli_opts *o, hl_error *err)
 {
     hl_system *sys = R->sys;
-    hl_alg_ctx *ctx = hl_system_ctx(sys);
     int st;
     if (o->map != NULL) {
         if ((st = hl_scheme_from_map(&R->s, o->map, sys, err)) != HL_OK)
@@ -180,7 +201,15 @@ static int compute(result *R, const err_opts *r, const cli_opts *o, hl_error *er
             hl_error_prefix(err, "in --equations");
     } else
         st = hl_scheme_new(&R->s, r->scheme, 0, sys, err);
-    if (st != HL_OK)
+    return st;
+}
+
+static int compute(result *R, const err_opts *r, const cli_opts *o, hl_error *err)
+{
+    hl_system *sys = R->sys;
+    hl_alg_ctx *ctx = hl_system_ctx(sys);
+    int st;
+    if ((st = make_scheme(R, r, o, err)) != HL_OK)
         return st;
     R->psi = series_vec(R->m, ctx);
     if ((st = hl_scheme_expand(R->psi, R->s, R->n + 1, err)) != HL_OK)
@@ -716,6 +745,209 @@ static void write_json(hl_buf *out, result *R, const err_opts *r, const cli_opts
     hl_json_finish(&j);
 }
 
+/* ---- --numeric: the analysis at one point (numerr.h) ---------------------- */
+
+/* z from "q=1.3,p=0": every phase variable once, each a number.  -1, or 2
+ * after a usage message. */
+static int parse_at(double *z, const char *at, result *R, const cli_command *cmd)
+{
+    int *seen = calloc((size_t)R->m, sizeof *seen);
+    char *copy = hl_xstrdup(at), *save = NULL;
+    int rc = -1;
+    for (char *it = strtok_r(copy, ",", &save); it != NULL && rc < 0;
+         it = strtok_r(NULL, ",", &save)) {
+        while (*it == ' ')
+            it++;
+        char *eq = strchr(it, '=');
+        if (eq == NULL) {
+            rc = cli_usage(cmd, "--at: '%s' is not 'name=value'", it);
+            break;
+        }
+        *eq = '\0';
+        char *name = it, *e = name + strlen(name);
+        while (e > name && e[-1] == ' ')
+            *--e = '\0';
+        int i = 0;
+        while (i < R->m && strcmp(R->names[i], name) != 0)
+            i++;
+        if (i == R->m) {
+            rc = cli_usage(cmd, "--at: '%s' is not a phase variable of H", name);
+            break;
+        }
+        if (seen[i]) {
+            rc = cli_usage(cmd, "--at: '%s' is given twice", name);
+            break;
+        }
+        char *end;
+        double v = strtod(eq + 1, &end);
+        while (*end == ' ')
+            end++;
+        if (end == eq + 1 || *end != '\0' || !isfinite(v)) {
+            rc = cli_usage(cmd, "--at: the value of '%s' is not a number: '%s'", name, eq + 1);
+            break;
+        }
+        z[i] = v;
+        seen[i] = 1;
+    }
+    for (int i = 0; i < R->m && rc < 0; i++)
+        if (!seen[i])
+            rc = cli_usage(cmd, "--at: no value for '%s' (give every phase variable)",
+                           R->names[i]);
+    free(copy);
+    free(seen);
+    return rc;
+}
+
+static void put_num_vec(hl_buf *out, const double *v, result *R)
+{
+    for (int i = 0; i < R->m; i++)
+        hl_buf_printf(out, "%s%s = %.17g", i ? ", " : "", R->names[i], v[i]);
+}
+
+static void write_numeric_text(hl_buf *out, const hl_numerr *nr, const double *z, result *R,
+                               const err_opts *r, const cli_opts *o)
+{
+    int m = R->m;
+    hl_buf_printf(out, "scheme: %s\n", r->scheme ? r->scheme : o->map ? o->map : r->equations);
+    hl_buf_puts(out, "H = ");
+    put_alg(out, hl_system_H(R->sys), R, HL_STYLE_TEXT);
+    hl_buf_puts(out, "\nat: ");
+    put_num_vec(out, z, R);
+    hl_buf_printf(out, "\nnumeric analysis at the point (double precision, Taylor mode) to "
+                       "order %d\n", nr->n);
+    for (int k = 2; k <= nr->n; k++) {
+        hl_buf_printf(out, "v_%d(z) = (", k);
+        put_num_vec(out, nr->v + k * m, R);
+        hl_buf_printf(out, ")  |v_%d| = %.3g %s threshold %.3g\n", k, nr->vnorm[k],
+                      nr->vnorm[k] > nr->thresh[k] ? ">" : "<=", nr->thresh[k]);
+    }
+    if (nr->leading)
+        hl_buf_printf(out, "order: %d (leading error v_%d: the least k with |v_k(z)| above "
+                           "round-off)\n", nr->order, nr->leading);
+    else
+        hl_buf_printf(out, "order: at least %d (no v_k above round-off up to k = %d)\n",
+                      nr->order, nr->n);
+    hl_buf_puts(out, "round-off threshold for v_k: 1e-10 · k! · max_i(|[D^k] psi_i| + "
+                     "|g^k z_i / k!|)\n");
+    hl_buf_printf(out, "K(D) = (d/dD psi_D)(psi_{-D}(z)), coefficients to D^%d:\n", nr->n - 1);
+    for (int k = 0; k < nr->n; k++) {
+        hl_buf_printf(out, "  D^%d: ", k);
+        put_num_vec(out, nr->K + k * m, R);
+        hl_buf_puts(out, "\n");
+    }
+}
+
+static void json_num(hl_buf *b, double x)
+{
+    if (isfinite(x))
+        hl_buf_printf(b, "%.17g", x);
+    else
+        hl_buf_puts(b, "null");
+}
+
+static void json_num_vec(hl_buf *b, const double *v, result *R)
+{
+    hl_buf_puts(b, "{");
+    for (int i = 0; i < R->m; i++) {
+        if (i)
+            hl_buf_puts(b, ", ");
+        hl_json_escape(b, R->names[i]);
+        hl_buf_puts(b, ": ");
+        json_num(b, v[i]);
+    }
+    hl_buf_puts(b, "}");
+}
+
+static void write_numeric_json(hl_buf *b, const hl_numerr *nr, const double *z, result *R,
+                               const err_opts *r, const cli_opts *o)
+{
+    int m = R->m;
+    /* the system's keys as the symbolic mode writes them (hl_json has no
+     * numbers: the rest is written by hand) */
+    hl_buf head;
+    hl_buf_init(&head);
+    hl_json j;
+    hl_json_init_buf(&j, &head);
+    hl_json_object_begin(&j);
+    cli_json_system(&j, R->sys);
+    hl_json_object_end(&j);
+    hl_json_finish(&j);
+    char *h = hl_buf_take(&head);
+    size_t hl = strlen(h);
+    while (hl > 0 && (h[hl - 1] == '\n' || h[hl - 1] == ' '))
+        hl--;
+    hl_buf_puts(b, "{\"command\": \"errors\", \"mode\": \"numeric\", ");
+    if (hl >= 2) /* without its braces */
+        hl_buf_printf(b, "%.*s", (int)(hl - 2), h + 1);
+    free(h);
+    hl_buf_clear(&head);
+    hl_buf_puts(b, ", \"numeric_zero_test\": false, \"scheme\": {\"source\": ");
+    hl_json_escape(b, r->scheme ? "catalog" : o->map ? "map" : "equations");
+    hl_buf_puts(b, ", \"name\": ");
+    hl_json_escape(b, R->s->name);
+    hl_buf_puts(b, ", \"input\": ");
+    hl_json_escape(b, r->scheme ? r->scheme : o->map ? o->map : r->equations);
+    hl_buf_printf(b, ", \"explicit\": %s}, \"at\": ", R->s->all_explicit ? "true" : "false");
+    json_num_vec(b, z, R);
+    hl_buf_printf(b, ", \"order_computed\": %d, \"fields\": [", nr->n);
+    for (int k = 2; k <= nr->n; k++) {
+        hl_buf_printf(b, "%s{\"k\": %d, \"v\": ", k > 2 ? ", " : "", k);
+        json_num_vec(b, nr->v + k * m, R);
+        hl_buf_puts(b, ", \"norm\": ");
+        json_num(b, nr->vnorm[k]);
+        hl_buf_puts(b, ", \"threshold\": ");
+        json_num(b, nr->thresh[k]);
+        hl_buf_printf(b, ", \"nonzero\": %s}", nr->vnorm[k] > nr->thresh[k] ? "true" : "false");
+    }
+    hl_buf_printf(b, "], \"order\": %d, \"leading\": ", nr->order);
+    if (nr->leading)
+        hl_buf_printf(b, "%d", nr->leading);
+    else
+        hl_buf_puts(b, "null");
+    hl_buf_printf(b, ", \"exact_to_order_computed\": %s, \"K_coefficients\": [",
+                  nr->leading ? "false" : "true");
+    for (int k = 0; k < nr->n; k++) {
+        if (k)
+            hl_buf_puts(b, ", ");
+        json_num_vec(b, nr->K + k * m, R);
+    }
+    hl_buf_puts(b, "], \"flow_coefficients\": [");
+    for (int k = 0; k <= nr->n; k++) {
+        if (k)
+            hl_buf_puts(b, ", ");
+        json_num_vec(b, nr->flow + k * m, R);
+    }
+    hl_buf_puts(b, "]}\n");
+}
+
+/* The whole --numeric path after the system is built: -1 on success with
+ * the output in out, else the exit code. */
+static int run_numeric(hl_buf *out, result *R, const err_opts *r, const cli_opts *o,
+                       const cli_command *cmd)
+{
+    double *z = hl_xmalloc((size_t)R->m * sizeof *z);
+    int rc = parse_at(z, r->at, R, cmd);
+    hl_error err;
+    hl_error_clear(&err);
+    hl_numerr nr;
+    memset(&nr, 0, sizeof nr);
+    if (rc < 0 && make_scheme(R, r, o, &err) != HL_OK)
+        rc = cli_fail(&err);
+    if (rc < 0 && hl_numerr_compute(&nr, R->s, z, R->n, &err) != HL_OK) {
+        hl_error_prefix(&err, "numeric analysis");
+        rc = cli_fail(&err);
+    }
+    if (rc < 0) {
+        if (o->format == CLI_JSON)
+            write_numeric_json(out, &nr, z, R, r, o);
+        else
+            write_numeric_text(out, &nr, z, R, r, o);
+    }
+    hl_numerr_clear(&nr);
+    free(z);
+    return rc;
+}
+
 int cmd_errors(int argc, char **argv)
 {
     const cli_command *cmd = cli_find("errors");
@@ -752,7 +984,14 @@ int cmd_errors(int argc, char **argv)
         R.names = hl_xmalloc((size_t)R.m * sizeof *R.names);
         for (int i = 0; i < R.m; i++)
             R.names[i] = i < R.N ? hl_system_coord(R.sys, i) : hl_system_momentum(R.sys, i - R.N);
-        if (compute(&R, &r, &o, &err) != HL_OK)
+        if (r.numeric) {
+            hl_buf out;
+            hl_buf_init(&out);
+            rc = run_numeric(&out, &R, &r, &o, cmd);
+            if (rc < 0)
+                rc = cli_emit(&out, CLI_OK);
+            hl_buf_clear(&out);
+        } else if (compute(&R, &r, &o, &err) != HL_OK)
             rc = cli_fail(&err);
     }
     if (rc < 0) {
