@@ -2,7 +2,8 @@
 # The command lines of the issues, run as written (with the values an issue
 # leaves as "..." filled in): each must exit as stated and say what it is
 # for.  A guard against a name or an option drifting away from what was
-# promised (as `--scheme stormer-verlet` once did).
+# promised (as `--scheme stormer-verlet` once did).  Issue 6's lines come
+# with it.
 # usage (from the repo root): bash tests/cli/issue-lines.sh path/to/hamlie
 set -u
 HAMLIE=${1:?usage: issue-lines.sh path/to/hamlie}
@@ -50,6 +51,8 @@ run 0 run -H "$KEPLER" --scheme lie --digits 50 --t 10 --init x=0.5,y=0,px=0,py=
 run 0 run -H "$PEND" --scheme gauss2 --dt 0.1 --t 2 --init q=1.3,p=0 --orders 0.1,0.05,0.025
 run 0 run -H "$OSC" --map 'X = x + D*p; P = p - D*x' --dt 0.1 --t 1 --init x=1,p=0
 run 0 run -H "$PEND" --equations '(Q-q)/D = (p+P)/2; (P-p)/D = -sin((q+Q)/2)' --dt 0.1 --t 1 --init q=1.3,p=0
+run 0 errors -H "$PEND" --scheme rk4 --at 'q=1.3,p=0' --order 8 --numeric
+has_text 'order: 4'
 
 # issue 7: the paper, and plots of any run
 run 0 reproduce --format png
