@@ -2,7 +2,8 @@
 # Error-analysis benchmark (issue 4): RK4 on Hénon–Heiles and the implicit
 # midpoint rule on the pendulum, v_2..v_8, hamlie against SymPy.
 # Usage: bench/run-errors.sh [build-dir] [--check]   (default: build)
-#   hamlie core:    bench-errors_analysis (expansion + hl_errors_compute, best of 5)
+#   hamlie core:    bench-errors_analysis: expansion + v_k by the direct route
+#                   (what SymPy does), and with the K(D) cross-check (best of 5)
 #   hamlie command: the whole `hamlie errors ... --order 8` (wall time, one run)
 #   --check: v_3 and v_5 of both cases compared (sympy.simplify(a - b) == 0)
 set -euo pipefail
@@ -49,9 +50,12 @@ python3 - "$ours" "$cmd" "$theirs" <<'PY'
 import sys
 rows = [{l.split()[0]: l.split() for l in a.splitlines()} for a in sys.argv[1:]]
 ours, cmd, theirs = rows
-print(f"{'case':18} {'order':>5} {'core s':>8} {'command s':>10} {'sympy s':>10} {'ratio':>8}")
-for name, (n, order, t) in ours.items():
+print(f"{'case':18} {'order':>5} {'direct s':>9} {'+K s':>8} {'command s':>10} {'sympy s':>8}"
+      f" {'ratio':>7} {'ratio+K':>8}")
+def ratio(ts, t):
+    return f"{float(ts)/float(t):6.0f}x" if ts != "timeout" else "  >600s"
+for name, (n, order, t, tk) in ours.items():
     ts = theirs[name][2]
-    ratio = f"{float(ts)/float(t):7.0f}x" if ts != "timeout" else "    >600s"
-    print(f"{name:18} {order:>5} {float(t):8.4f} {float(cmd[name][1]):10.3f} {ts:>10} {ratio:>8}")
+    print(f"{name:18} {order:>5} {float(t):9.4f} {float(tk):8.4f} {float(cmd[name][1]):10.3f}"
+          f" {ts:>8} {ratio(ts, t):>7} {ratio(ts, tk):>8}")
 PY

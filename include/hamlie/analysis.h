@@ -46,8 +46,9 @@ typedef struct hl_errors {
     int N;          /* degrees of freedom */
     int n;          /* v_k known for k = 2..n */
     hl_alg *v;      /* v[k*2N + i], k = 0..n (k < 2 are zero): direct */
-    hl_alg *vK;     /* the same from K alone */
-    int agree;      /* the two computations agree for every k */
+    hl_alg *vK;     /* the same from K alone (zero when not checked) */
+    int checked;    /* the K route was run (hl_errors_compute) */
+    int agree;      /* checked, and the two computations agree for every k */
     int disagree_k; /* first k where they do not (0 if they agree) */
     int leading;    /* m: the least k with v_k != 0, or 0 if none up to n */
     int order;      /* m - 1, or n when no error up to n (exact to that order) */
@@ -58,6 +59,12 @@ typedef struct hl_errors {
 int hl_errors_compute(hl_errors *e, const hl_series *psi, hl_system *sys, int n,
                       hl_error *err);
 void hl_errors_clear(hl_errors *e, hl_system *sys);
+
+/* The direct route alone (the expansion minus the Lie series): v, leading
+ * and order as above, checked = agree = 0.  Several times faster where
+ * the K route dominates (RK4 on Henon-Heiles to order 8: 2-4 ms against 72). */
+int hl_errors_compute_direct(hl_errors *e, const hl_series *psi, hl_system *sys, int n,
+                             hl_error *err);
 
 /* The field of v_k: 2N components. */
 static inline hl_alg *hl_errors_field(const hl_errors *e, int k) { return e->v + k * 2 * e->N; }

@@ -93,15 +93,16 @@ static int errors_from_K(hl_errors *e, const hl_series *psi, const hl_series *li
     return st;
 }
 
-int hl_errors_compute(hl_errors *e, const hl_series *psi, hl_system *sys, int n,
-                      hl_error *err)
+static int compute(hl_errors *e, const hl_series *psi, hl_system *sys, int n, int cross,
+                   hl_error *err)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     int N = hl_system_ndof(sys), m = 2 * N, st = HL_OK;
     e->N = N;
     e->n = n;
     e->v = e->vK = NULL;
-    e->agree = 1;
+    e->checked = cross;
+    e->agree = cross;
     e->disagree_k = 0;
     e->leading = 0;
     e->order = n;
@@ -130,12 +131,12 @@ int hl_errors_compute(hl_errors *e, const hl_series *psi, hl_system *sys, int n,
             hl_alg_scalar_mul_fmpq(&e->v[k * m + i], &d, f, ctx);
         }
     }
-    if (st == HL_OK)
+    if (st == HL_OK && cross)
         st = errors_from_K(e, psi, lie, sys, err);
     for (int k = 2; k <= n && st == HL_OK; k++) {
         int zero = 1;
         for (int i = 0; i < m; i++) {
-            if (!hl_alg_equal(&e->v[k * m + i], &e->vK[k * m + i], ctx) && e->agree) {
+            if (cross && e->agree && !hl_alg_equal(&e->v[k * m + i], &e->vK[k * m + i], ctx)) {
                 e->agree = 0;
                 e->disagree_k = k;
             }
@@ -150,6 +151,18 @@ int hl_errors_compute(hl_errors *e, const hl_series *psi, hl_system *sys, int n,
     fmpq_clear(f);
     series_vec_free(lie, m, ctx);
     return st;
+}
+
+int hl_errors_compute(hl_errors *e, const hl_series *psi, hl_system *sys, int n,
+                      hl_error *err)
+{
+    return compute(e, psi, sys, n, 1, err);
+}
+
+int hl_errors_compute_direct(hl_errors *e, const hl_series *psi, hl_system *sys, int n,
+                             hl_error *err)
+{
+    return compute(e, psi, sys, n, 0, err);
 }
 
 void hl_errors_clear(hl_errors *e, hl_system *sys)
