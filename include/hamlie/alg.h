@@ -114,6 +114,14 @@ const hl_expr *hl_alg_to_expr(const hl_alg *a, const hl_alg_ctx *ctx, hl_pool *p
 /* Partial derivative with respect to base symbol var (chain rule through atoms). */
 int hl_alg_diff(hl_alg *r, const hl_alg *a, int var, hl_alg_ctx *ctx, hl_error *err);
 
+/* An antiderivative in base symbol x of f whose numerator is a polynomial in
+ * x, sin(x) and cos(x) (other factors free of x) over a denominator free
+ * of x (reduction formulas and integration by parts; antideriv.c).  *found
+ * = 0, not an error, for anything else; a result is always checked: its
+ * derivative in x is f exactly.  No constant is added. */
+int hl_alg_antiderivative(hl_alg *r, int *found, const hl_alg *f, int x, hl_alg_ctx *ctx,
+                          hl_error *err);
+
 /* Simultaneous substitution of base symbols vars[i] by vals[i]; atoms whose
  * arguments change become (possibly new) atoms. */
 int hl_alg_subst(hl_alg *r, const hl_alg *a, int n, const int *vars, const hl_alg *vals,
