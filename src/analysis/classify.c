@@ -132,6 +132,50 @@ static int euler_h(int *found, hl_alg *h, const hl_alg *v, hl_system *sys, hl_er
     return st;
 }
 
+/* h by antiderivatives, for fields with sin/cos of the coordinates (the
+ * pendulum's): h = sum_j int (a_j - dh/dp_j) dp_j, then
+ * h += sum_j int (-b_j - dh/dq_j) dq_j, each integrand's left-over checked
+ * free of what is already integrated; finally J grad h = v exactly.
+ * *found = 0 when an antiderivative is out of reach (alg.h). */
+static int antiderivative_h(int *found, hl_alg *h, const hl_alg *v, hl_system *sys,
+                            hl_error *err)
+{
+    hl_alg_ctx *ctx = hl_system_ctx(sys);
+    int N = hl_system_ndof(sys), st = HL_OK, ok = 1;
+    hl_alg d, g, I;
+    hl_alg_init(&d, ctx);
+    hl_alg_init(&g, ctx);
+    hl_alg_init(&I, ctx);
+    hl_alg_zero(h, ctx);
+    for (int k = 0; k < 2 * N && ok && st == HL_OK; k++) {
+        int j = k % N, var = k < N ? hl_system_var_p(sys, j) : hl_system_var_q(sys, j);
+        if ((st = hl_alg_diff(&d, h, var, ctx, err)) != HL_OK)
+            break;
+        if (k < N) /* dh/dp_j = a_j */
+            hl_alg_sub(&g, &v[j], &d, ctx);
+        else { /* dh/dq_j = -b_j */
+            hl_alg_neg(&g, &v[N + j], ctx);
+            hl_alg_sub(&g, &g, &d, ctx);
+        }
+        st = hl_alg_antiderivative(&I, &ok, &g, var, ctx, err);
+        if (st == HL_OK && ok)
+            hl_alg_add(h, h, &I, ctx);
+    }
+    for (int j = 0; j < N && ok && st == HL_OK; j++) {
+        st = hl_alg_diff(&d, h, hl_system_var_p(sys, j), ctx, err);
+        ok = st == HL_OK && hl_alg_equal(&d, &v[j], ctx);
+        if (ok && (st = hl_alg_diff(&d, h, hl_system_var_q(sys, j), ctx, err)) == HL_OK) {
+            hl_alg_neg(&d, &d, ctx);
+            ok = hl_alg_equal(&d, &v[N + j], ctx);
+        }
+    }
+    *found = ok && st == HL_OK;
+    hl_alg_clear(&d, ctx);
+    hl_alg_clear(&g, ctx);
+    hl_alg_clear(&I, ctx);
+    return st;
+}
+
 /* v = lambda f for the generator's components f?  *par = 0 if not. */
 static int parallel(int *par, hl_alg *lambda, const hl_alg *v, const hl_alg *f, int m,
                     hl_alg_ctx *ctx, hl_error *err)
@@ -203,6 +247,8 @@ int hl_errfield_classify(hl_errfield *F, const hl_alg *v, hl_system *sys, hl_err
         if (F->kind == HL_ERRFIELD_GENERAL)
             F->kind = HL_ERRFIELD_HAMILTONIAN;
         st = euler_h(&F->have_h, &F->h, v, sys, err);
+        if (st == HL_OK && !F->have_h)
+            st = antiderivative_h(&F->have_h, &F->h, v, sys, err);
     }
     hl_alg_vec_free(f, m, ctx);
     return st;

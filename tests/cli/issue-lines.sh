@@ -40,6 +40,8 @@ for f in "" --json --latex; do
 done
 run 0 errors -H "$OSC" --scheme euler --order 6 --correct 4
 has_text 'order: 4'
+run 0 errors -H "$PEND" --scheme implicit-midpoint --order 6
+has_text 'modified Hamiltonian: H~ = p^2/2 - cos(q) - D^2/24*(p^2*cos(q) - cos(q)^2)'
 
 # issue 5: running schemes
 run 0 run -H "$OSC" --scheme euler --dt 0.1 --t 20 --init x=1,p=0
