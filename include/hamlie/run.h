@@ -54,6 +54,17 @@ typedef struct hl_run hl_run;
 int hl_run_new(hl_run **out, hl_system *sys, const hl_scheme *scheme, hl_error *err);
 void hl_run_free(hl_run *r); /* NULL is a no-op */
 
+/* A run of a stepper that the scheme language does not state (the exact
+ * schemes of exact.h, computed by quadrature; a caller's own): step
+ * advances z (2N values, q then p) in place by dt and returns nonzero on
+ * failure, leaving z as it was and err set.  Everything else — rows, H,
+ * observers, sigma against the reference, orders, failures with the step
+ * and time — as for a scheme (hl_run_fixed; hl_run_adaptive is not for
+ * it).  arg is borrowed. */
+typedef int (*hl_run_step_fn)(double *z, double dt, void *arg, hl_error *err);
+int hl_run_new_stepper(hl_run **out, hl_system *sys, hl_run_step_fn step, void *arg,
+                       hl_error *err);
+
 /* Add an observer: a formula in the system's variables, its parameters and
  * H.  Errors point into formula. */
 int hl_run_observe(hl_run *r, const char *formula, hl_error *err);

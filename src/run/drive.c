@@ -73,10 +73,36 @@ static int row(drive *d, long k, const double *ref)
     return HL_OK;
 }
 
+/* A caller's stepper is not trusted to check its result: a value that is
+ * not finite is a blow-up, as for the scheme stepper. */
+static int all_finite(const double *z, int n, drive *d, long k, double t)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(z[i]))
+            return hl_error_set(d->err, HL_EDOM, NULL, -1, 0,
+                                "blow-up: step %ld (t = %.17g, D = %g): the next point is not "
+                                "finite",
+                                k, t, d->dt);
+    return HL_OK;
+}
+
 /* Step k-1 -> k of the scheme. */
 static int advance(drive *d, long k)
 {
     double t = (double)(k - 1) * d->dt;
+    if (d->r->step != NULL) {
+        hl_run *r = d->r;
+        size_t bytes = (size_t)(2 * r->N) * sizeof *r->z;
+        memcpy(r->zs, r->z, bytes);
+        int st = r->step(r->z, d->dt, r->step_arg, d->err);
+        if (st != HL_OK && d->err != NULL)
+            hl_error_prefix(d->err, "step %ld (t = %.17g, D = %g)", k, t, d->dt);
+        if (st == HL_OK)
+            st = all_finite(r->z, 2 * r->N, d, k, t);
+        if (st != HL_OK) /* a failed step leaves the state as it was */
+            memcpy(r->z, r->zs, bytes);
+        return st;
+    }
     int st = hl_scheme_step(d->r->stepper, d->r->z, d->dt, t, d->err);
     if (st != HL_OK) {
         if (d->err != NULL && st == HL_EDOM)
@@ -161,14 +187,14 @@ int hl_run_fixed(hl_run *r, const double *z0, double dt, double t, long every,
     hl_run_stats local;
     hl_run_stats *s = stats != NULL ? stats : &local;
     drive d;
-    if (r->stepper == NULL)
+    if (r->stepper == NULL && r->step == NULL)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "this run has no scheme");
     int st = start(&d, r, z0, dt, t, every, fn, arg, s, err);
     if (st != HL_OK)
         return st;
     /* a fresh stepper for each run: its step count (in its messages)
      * starts at 1 */
-    if (r->stepped) {
+    if (r->stepped && r->stepper != NULL) {
         hl_scheme_stepper *fresh = NULL;
         if ((st = hl_scheme_stepper_new(&fresh, r->scheme, err)) != HL_OK)
             return st;
@@ -181,7 +207,7 @@ int hl_run_fixed(hl_run *r, const double *z0, double dt, double t, long every,
     if (r->jit && d.n >= JIT_MIN_STEPS && !hl_tape_jit_active(r->obs) &&
         hl_tape_jit_available())
         hl_tape_jit(r->obs, NULL); /* on failure the interpreter goes on */
-    if (r->jit)
+    if (r->jit && r->stepper != NULL)
         hl_scheme_stepper_jit(r->stepper, d.n);
     st = row(&d, 0, r->ref_on ? z0 : NULL);
     if (st == HL_OK && r->ref_on)

@@ -63,6 +63,21 @@ int hl_run_new(hl_run **out, hl_system *sys, const hl_scheme *scheme, hl_error *
     return HL_OK;
 }
 
+int hl_run_new_stepper(hl_run **out, hl_system *sys, hl_run_step_fn step, void *arg,
+                       hl_error *err)
+{
+    *out = NULL;
+    if (step == NULL)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "no step function");
+    int st = hl_run_new(out, sys, NULL, err);
+    if (st == HL_OK) {
+        (*out)->step = step;
+        (*out)->step_arg = arg;
+        (*out)->zs = hl_xcalloc((size_t)(2 * (*out)->N), sizeof *(*out)->zs);
+    }
+    return st;
+}
+
 void hl_run_free(hl_run *r)
 {
     if (r == NULL)
@@ -70,7 +85,7 @@ void hl_run_free(hl_run *r)
     hl_scheme_stepper_free(r->stepper);
     hl_tape_free(r->obs);
     hl_tape_free(r->vf);
-    free(r->names), free(r->outs), free(r->z), free(r->ref), free(r->vals);
+    free(r->names), free(r->outs), free(r->z), free(r->ref), free(r->vals), free(r->zs);
     free(r);
 }
 

@@ -11,6 +11,9 @@ struct hl_run {
     const hl_scheme *scheme;    /* borrowed; NULL for the adaptive run */
     hl_scheme_stepper *stepper; /* NULL for the adaptive run */
     int stepped;                /* the stepper has taken steps: rebuild it */
+    hl_run_step_fn step;        /* a caller's stepper instead (hl_run_new_stepper) */
+    void *step_arg;
+    double *zs;                 /* the state before a caller's step */
     const char **names;         /* q_1..q_N, p_1..p_N (borrowed from sys) */
     const hl_expr **outs;       /* H, then the observers */
     int nout;
