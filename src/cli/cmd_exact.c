@@ -2,8 +2,21 @@
  * and the checks that it is the flow. */
 #include <stdlib.h>
 
+#include <math.h>
+#include <string.h>
+
 #include "cli/cli.h"
+#include "hamlie/exact.h"
+#include "hamlie/flow.h"
+#include "hamlie/run.h"
 #include "hamlie/scheme.h"
+#include "hamlie/tape.h"
+
+/* The command's own options (taken out of argv before cli_parse). */
+static struct {
+    const char *init, *aa, *dt;
+    int steps;
+} ex;
 
 const char cmd_exact_help[] =
     "usage: hamlie exact -H FORMULA [--order N] [options]\n"
@@ -26,11 +39,22 @@ const char cmd_exact_help[] =
     "  --latex              print the images as LaTeX\n"
     "  -h, --help           show this help\n"
     "\n"
-    "Not here yet (issue 6): the seven steps of §3 from action-angle\n"
-    "coordinates, and exact schemes of non-quadratic systems by quadrature.\n"
-    "Exit status: 0 printed and every check holds; 1 a check fails; 2 usage or\n"
-    "input error (H not quadratic, pairs coupled).\n"
-    "Example: hamlie exact -H '(px^2+py^2)/2+(x^2+4*y^2)/2'\n";
+    "  --steps              the seven steps of §3 (oscillator p^2/(2m) + k q^2/2,\n"
+    "                       m, k numbers or symbols), each printed, then checked\n"
+    "                       as an action-angle map and against the closed form\n"
+    "  --action-angle MAP   'theta = ...; I = ...; q = ...; p = ...; nu = ...'\n"
+    "                       (1 dof): verified ({theta,I} = 1, {I,H} = 0,\n"
+    "                       {theta,H} = nu(I), q,p the inverse at points p > 0),\n"
+    "                       then the scheme Q = q(theta + nu D, I), P = p(...)\n"
+    "  --init q=..,p=..     1 dof, H not quadratic: the numeric exact scheme by\n"
+    "                       the orbit (period T, frequency 2 pi/T) and 8 steps\n"
+    "                       of --dt (default 0.5) against the Taylor integrator\n"
+    "\n"
+    "Exit status: 0 printed and every check holds; 1 a check fails (a wrong\n"
+    "action-angle map: the failing condition is named); 2 usage or input\n"
+    "error (H not quadratic without --init, pairs coupled, unbounded orbit).\n"
+    "Example: hamlie exact -H '(px^2+py^2)/2+(x^2+4*y^2)/2'\n"
+    "Example: hamlie exact -H 'p^2/2 - cos(q)' --init q=1.3,p=0\n";
 
 typedef struct exact_checks {
     int lie, canonical, group;
@@ -142,8 +166,370 @@ static void write_out(hl_buf *out, const hl_alg *img, const exact_checks *c, int
     cli_numeric_note(out, sys, o->format);
 }
 
+/* ---- issue 6 modes --------------------------------------------------------- */
+
+/* Evaluate an alg at (q, p, D) numerically (the other symbols must not
+ * occur). */
+static double eval_at(const hl_alg *a, hl_system *sys, double q, double p, double D,
+                      hl_error *err)
+{
+    hl_alg_ctx *ctx = hl_system_ctx(sys);
+    int nb = hl_alg_ctx_nbase(ctx);
+    arb_ptr v = _arb_vec_init(nb);
+    arb_t r;
+    arb_init(r);
+    arb_set_d(v + hl_system_var_q(sys, 0), q);
+    arb_set_d(v + hl_system_var_p(sys, 0), p);
+    arb_set_d(v + hl_system_var_D(sys), D);
+    /* symbolic parameters: the sample values of hl_exact_aa_verify */
+    for (int i = 0; i < hl_system_nparams(sys); i++)
+        arb_set_d(v + hl_alg_ctx_index(ctx, hl_system_param(sys, i)), 1.3 + 0.17 * i);
+    double x = NAN;
+    if (hl_alg_eval_arb(r, a, v, 128, ctx, err) == HL_OK)
+        x = arf_get_d(arb_midref(r), ARF_RND_NEAR);
+    arb_clear(r);
+    _arb_vec_clear(v, nb);
+    return x;
+}
+
+static void put_formula(hl_buf *out, const char *lhs, const char *rhs, hl_system *sys,
+                        const cli_opts *o)
+{
+    if (o->format == CLI_LATEX) {
+        const hl_expr *e = NULL;
+        hl_error e2;
+        if (hl_parse(&e, hl_system_pool(sys), rhs, &e2) == HL_OK) {
+            char *s = hl_expr_print(e, HL_STYLE_LATEX);
+            const char *l = strcmp(lhs, "theta") == 0   ? "\\theta"
+                            : strcmp(lhs, "gamma") == 0 ? "\\gamma"
+                            : strcmp(lhs, "nu") == 0    ? "\\nu"
+                                                        : lhs;
+            hl_buf_printf(out, "  $%s = %s$\n", l, s);
+            free(s);
+            return;
+        }
+    }
+    hl_buf_printf(out, "  %s = %s\n", lhs, rhs);
+}
+
+static void put_images(hl_buf *out, const hl_alg *img, hl_system *sys, const cli_opts *o)
+{
+    for (int i = 0; i < 2 * hl_system_ndof(sys); i++) {
+        char *nm = cli_image_name(sys, i);
+        char *s = hl_format_alg(&img[i], hl_system_ctx(sys), hl_system_pool(sys),
+                                o->format == CLI_LATEX ? HL_STYLE_LATEX : HL_STYLE_TEXT);
+        hl_buf_printf(out, "  %s = %s\n", nm, s);
+        free(nm), free(s);
+    }
+}
+
+/* Q, P of a map against the closed form at sample points (p > 0). */
+static int agree_with_closed(int *ok, double *maxd, const hl_alg *img, hl_system *sys,
+                             hl_error *err)
+{
+    hl_alg_ctx *ctx = hl_system_ctx(sys);
+    hl_alg *cf = hl_alg_vec_new(2, ctx);
+    int st = hl_scheme_linear_flow(cf, sys, err);
+    static const double pts[][3] = {{0.3, 0.8, 0.5}, {-1.2, 0.4, 2.0}, {0.7, 2.0, -3.1}};
+    *ok = st == HL_OK;
+    *maxd = 0;
+    for (int i = 0; i < 3 && *ok; i++)
+        for (int v = 0; v < 2; v++) {
+            double a = eval_at(&img[v], sys, pts[i][0], pts[i][1], pts[i][2], err);
+            double b = eval_at(&cf[v], sys, pts[i][0], pts[i][1], pts[i][2], err);
+            double d = fabs(a - b);
+            *maxd = isfinite(d) ? fmax(*maxd, d) : INFINITY;
+        }
+    *ok = *ok && *maxd < 1e-12;
+    hl_alg_vec_free(cf, 2, ctx);
+    return st;
+}
+
+static int run_aa(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_error *err)
+{
+    hl_exact_aa aa;
+    int st = hl_exact_aa_read(&aa, sys, ex.aa, err);
+    if (st != HL_OK) {
+        hl_error_prefix(err, "in --action-angle");
+        return st;
+    }
+    int ok = 0;
+    char why[400];
+    st = hl_exact_aa_verify(&ok, why, sizeof why, &aa, sys, err);
+    if (st != HL_OK)
+        return st;
+    if (!ok) {
+        hl_buf_printf(out, "action-angle map rejected: %s\n", why);
+        *code = CLI_FAILS;
+        return HL_OK;
+    }
+    hl_buf_puts(out, "action-angle map verified: {theta, I} = 1, {I, H} = 0, "
+                     "{theta, H} = nu(I), q and p the inverse (at points with p > 0)\n");
+    hl_alg *img = hl_alg_vec_new(2, hl_system_ctx(sys));
+    st = hl_exact_aa_scheme(img, &aa, sys, err);
+    if (st == HL_OK) {
+        hl_buf_puts(out, "exact scheme Q = q(theta + nu D, I), P = p(theta + nu D, I):\n");
+        put_images(out, img, sys, o);
+        *code = CLI_OK;
+    }
+    hl_alg_vec_free(img, 2, hl_system_ctx(sys));
+    return st;
+}
+
+/* The seven steps for H = p^2/(2m) + k q^2/2 (H = a p^2 + b q^2). */
+static int run_steps(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_error *err)
+{
+    if (hl_system_ndof(sys) != 1)
+        return hl_error_set(err, HL_EUNSUP, NULL, -1, 0,
+                            "--steps is for 1 degree of freedom (H = p^2/(2m) + k q^2/2)");
+    hl_alg_ctx *ctx = hl_system_ctx(sys);
+    hl_pool *pool = hl_system_pool(sys);
+    int vq = hl_system_var_q(sys, 0), vp = hl_system_var_p(sys, 0), st;
+    hl_alg d, e, z;
+    hl_alg_init(&d, ctx);
+    hl_alg_init(&e, ctx);
+    hl_alg_init(&z, ctx);
+    char *ms = NULL, *ks = NULL;
+    int form = 1;
+    /* a = H_pp/2, b = H_qq/2; H_qp, H_q(0), H_p(0) must vanish */
+    st = hl_alg_diff(&d, hl_system_H(sys), vp, ctx, err);
+    if (st == HL_OK)
+        st = hl_alg_diff(&e, &d, vp, ctx, err);
+    if (st == HL_OK) {
+        hl_alg_set_si(&z, 1, ctx);
+        st = hl_alg_div(&z, &z, &e, ctx, err); /* m = 1 / H_pp */
+    }
+    if (st == HL_OK) {
+        ms = hl_format_alg(&z, ctx, pool, HL_STYLE_TEXT);
+        form = !hl_alg_depends_on(&e, vq, ctx) && !hl_alg_depends_on(&e, vp, ctx);
+        st = hl_alg_diff(&e, &d, vq, ctx, err);
+        form = form && hl_alg_is_zero(&e, ctx);
+    }
+    if (st == HL_OK)
+        st = hl_alg_diff(&d, hl_system_H(sys), vq, ctx, err);
+    if (st == HL_OK)
+        st = hl_alg_diff(&e, &d, vq, ctx, err);
+    if (st == HL_OK) {
+        ks = hl_format_alg(&e, ctx, pool, HL_STYLE_TEXT);
+        form = form && !hl_alg_depends_on(&e, vq, ctx) && !hl_alg_depends_on(&e, vp, ctx);
+        hl_alg_zero(&z, ctx);
+        st = hl_alg_subst(&z, &d, 1, &vq, &z, ctx, err); /* H_q at q = 0: no field */
+        form = form && hl_alg_is_zero(&z, ctx) && !hl_alg_is_zero(&e, ctx);
+    }
+    hl_alg_clear(&d, ctx);
+    hl_alg_clear(&e, ctx);
+    hl_alg_clear(&z, ctx);
+    if (st == HL_OK && !form)
+        st = hl_error_set(err, HL_EUNSUP, NULL, -1, 0,
+                          "--steps carries out §3 for the oscillator p^2/(2m) + k q^2/2 "
+                          "(k != 0); the free particle and the uniform field have no "
+                          "periodic angle: use the closed form (without --steps)");
+    if (st != HL_OK) {
+        free(ms), free(ks);
+        return st;
+    }
+    const char *q = hl_system_coord(sys, 0), *p = hl_system_momentum(sys, 0);
+    char m[128], k[128];
+    snprintf(m, sizeof m, "(%s)", ms);
+    snprintf(k, sizeof k, "(%s)", ks);
+    free(ms), free(ks);
+    hl_buf f;
+    hl_buf_init(&f);
+#define F(...) (hl_buf_clear(&f), hl_buf_printf(&f, __VA_ARGS__), f.s)
+    int unit = strcmp(m, "(1)") == 0 && strcmp(k, "(1)") == 0;
+    if (unit)
+        hl_buf_printf(out, "H = (%s^2 + %s^2)/2: m = k = 1\n", p, q);
+    else
+        hl_buf_printf(out, "H = %s^2/(2*m) + k*%s^2/2 with m = %.*s, k = %.*s\n", p, q,
+                      (int)strlen(m) - 2, m + 1, (int)strlen(k) - 2, k + 1);
+    hl_buf_puts(out, "step 1: the integral of motion as the action\n");
+    put_formula(out, "I", unit ? F("(%s^2 + %s^2)/2", p, q) : F("%s^2/(2*m) + k*%s^2/2", p, q),
+                sys, o);
+    hl_buf_puts(out, "step 2: the momentum from I (eps = +1 or -1, the branch)\n");
+    put_formula(out, p, unit ? F("eps*sqrt(2*I - %s^2)", q) : F("eps*sqrt(2*m*I - m*k*%s^2)", q),
+                sys, o);
+    hl_buf_puts(out, "step 3: the generating function K(q, I) = int p dq\n");
+    put_formula(out, "K",
+                unit ? F("eps*(%s/2*sqrt(2*I - %s^2) + I*atan(%s/sqrt(2*I - %s^2)))", q, q, q, q)
+                     : F("eps*(%s/2*sqrt(2*m*I - m*k*%s^2) + I*sqrt(m/k)*atan(%s*sqrt(m*k)/"
+                         "sqrt(2*m*I - m*k*%s^2)))", q, q, q, q),
+                sys, o);
+    hl_buf_puts(out, "step 4: the angle theta = dK/dI (in units of time)\n");
+    put_formula(out, "theta", unit ? F("atan(%s/%s)", q, p) : F("sqrt(m/k)*atan(sqrt(m*k)*%s/%s)", q, p),
+                sys, o);
+    hl_buf_puts(out, "step 5: the inverse\n");
+    put_formula(out, q, unit ? "sqrt(2*I)*sin(theta)" : "sqrt(2*I/k)*sin(sqrt(k/m)*theta)", sys, o);
+    put_formula(out, p, unit ? "sqrt(2*I)*cos(theta)" : "sqrt(2*m*I)*cos(sqrt(k/m)*theta)", sys, o);
+    hl_buf_puts(out, "step 6: the frequency nu = {theta, H}\n");
+    put_formula(out, "nu", "1", sys, o);
+    hl_buf_puts(out, "step 7: the constant of the action\n");
+    put_formula(out, "gamma", unit ? F("(%s^2 + %s^2)/2", p, q) : F("%s^2/(2*m) + k*%s^2/2", p, q),
+                sys, o);
+    /* the same formulas with the values of m and k, for the checks */
+    char *Ks = hl_xstrdup(F("eps*(%s/2*sqrt(2*%s*I - %s*%s*%s^2) + I*sqrt(%s/%s)*"
+                      "atan(%s*sqrt(%s*%s)/sqrt(2*%s*I - %s*%s*%s^2)))",
+                      q, m, m, k, q, m, k, q, m, k, m, m, k, q));
+    char *th = hl_xstrdup(F("sqrt(%s/%s)*atan(sqrt(%s*%s)*%s/%s)", m, k, m, k, q, p));
+    char *rq = hl_xstrdup(F("sqrt(2*I/%s)*sin(sqrt(%s/%s)*theta)", k, k, m));
+    char *rp = hl_xstrdup(F("sqrt(2*%s*I)*cos(sqrt(%s/%s)*theta)", m, k, m));
+    hl_buf_clear(&f);
+#undef F
+    /* checks: dK/dq = p and dK/dI = theta numerically (eps = 1, p > 0);
+     * the map through hl_exact_aa_verify; the scheme against the closed form */
+    int ok = 1;
+    double maxd = 0;
+    {
+        const hl_expr *Ke = NULL, *te = NULL;
+        st = hl_parse(&Ke, pool, Ks, err);
+        if (st == HL_OK)
+            st = hl_parse(&te, pool, th, err);
+        if (st == HL_OK) {
+            const char *nm1[] = {"eps"};
+            const hl_expr *one[] = {hl_num_si(pool, 1)};
+            Ke = hl_expr_subst(pool, Ke, 1, nm1, one);
+            const hl_expr *dKdI = hl_expr_diff(pool, Ke, "I");
+            const hl_expr *dKdq = hl_expr_diff(pool, Ke, q);
+            static const double pts[][2] = {{0.3, 0.8}, {-0.5, 0.2}, {0.1, 1.7}};
+            for (int i = 0; i < 3 && st == HL_OK; i++) {
+                /* at (q, p): I = H(q, p) */
+                const char *names[] = {q, p, "I"};
+                const hl_expr *He = hl_system_H_expr(sys);
+                double Iv = NAN, a = NAN, b = NAN, c = NAN, vals[3] = {pts[i][0], pts[i][1], 0};
+                if (hl_expr_eval_d(&Iv, He, 2, names, vals, err) != HL_OK)
+                    break; /* symbolic m, k: skip the numeric check of K */
+                vals[2] = Iv;
+                if (hl_expr_eval_d(&a, dKdq, 3, names, vals, err) != HL_OK ||
+                    hl_expr_eval_d(&b, dKdI, 3, names, vals, err) != HL_OK ||
+                    hl_expr_eval_d(&c, te, 3, names, vals, err) != HL_OK)
+                    break;
+                ok = ok && fabs(a - vals[1]) < 1e-12 && fabs(b - c) < 1e-12;
+            }
+            st = HL_OK;
+        }
+    }
+    char *spec = NULL;
+    {
+        hl_buf sb;
+        hl_buf_init(&sb);
+        hl_buf_printf(&sb, "theta = %s; I = %s^2/(2*%s) + %s*%s^2/2; %s = %s; %s = %s; nu = 1",
+                      th, p, m, k, q, q, rq, p, rp);
+        spec = hl_buf_take(&sb);
+    }
+    hl_exact_aa aa;
+    char why[400] = "";
+    int aok = 0, cok = 0;
+    hl_alg *img = hl_alg_vec_new(2, hl_system_ctx(sys));
+    if (st == HL_OK)
+        st = hl_exact_aa_read(&aa, sys, spec, err);
+    if (st == HL_OK)
+        st = hl_exact_aa_verify(&aok, why, sizeof why, &aa, sys, err);
+    if (st == HL_OK)
+        st = hl_exact_aa_scheme(img, &aa, sys, err);
+    if (st == HL_OK)
+        st = agree_with_closed(&cok, &maxd, img, sys, err);
+    if (st == HL_OK) {
+        hl_buf_puts(out, "result: Q = r(theta(q, gamma) + nu D, gamma), P = s(...):\n");
+        put_images(out, img, sys, o);
+        hl_alg *cf = hl_alg_vec_new(2, hl_system_ctx(sys));
+        st = hl_scheme_linear_flow(cf, sys, err);
+        if (st == HL_OK) {
+            hl_buf_puts(out, "simplified (the closed form it equals):\n");
+            put_images(out, cf, sys, o);
+        }
+        hl_alg_vec_free(cf, 2, hl_system_ctx(sys));
+        hl_buf_printf(out, "check dK/dq = p, dK/dI = theta: %s\n", ok ? "yes" : "NO");
+        hl_buf_printf(out, "check the action-angle map: %s%s\n", aok ? "yes" : "NO: ", why);
+        hl_buf_printf(out, "check the result equals the closed form (max diff %.2g): %s\n",
+                      maxd, cok ? "yes" : "NO");
+        *code = ok && aok && cok ? CLI_OK : CLI_FAILS;
+    }
+    hl_alg_vec_free(img, 2, hl_system_ctx(sys));
+    free(spec), free(Ks), free(th), free(rq), free(rp);
+    return st;
+}
+
+/* 1 dof, not quadratic: the orbit's period and a few steps against the
+ * Taylor integrator. */
+static int run_numeric(hl_buf *out, int *code, hl_system *sys, const cli_opts *o,
+                       hl_error *err)
+{
+    (void)o;
+    int N = hl_system_ndof(sys);
+    double z[2 * 8], r[2 * 8];
+    if (N > 8)
+        return hl_error_set(err, HL_EUNSUP, NULL, -1, 0, "--init: at most 8 dof here");
+    double dt = 0.5;
+    if (ex.dt != NULL) {
+        char *end;
+        dt = strtod(ex.dt, &end);
+        if (*end || !isfinite(dt) || dt == 0)
+            return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "--dt must be a non-zero number");
+    }
+    int st = hl_run_init_values(z, sys, ex.init, err);
+    if (st != HL_OK) {
+        hl_error_prefix(err, "in --init");
+        return st;
+    }
+    memcpy(r, z, sizeof(double) * 2 * N);
+    hl_exact_flow *f = NULL;
+    st = hl_exact_flow_new(&f, sys, err);
+    if (st != HL_OK)
+        return st;
+    double T = NAN;
+    if (!hl_exact_flow_is_linear(f)) {
+        st = hl_exact_flow_period(&T, z, f, err);
+        if (st == HL_OK)
+            hl_buf_printf(out, "orbit through the initial point: period T = %.17g, "
+                               "frequency 2 pi/T = %.17g\n", T, 2 * M_PI / T);
+    } else
+        hl_buf_puts(out, "H quadratic: the exact step is exp(D A) (matrix exponential)\n");
+    /* reference: the Taylor integrator at 1e-15 */
+    hl_tape *tape = NULL;
+    hl_flow *fl = NULL;
+    const char *nq[8], *np[8];
+    for (int j = 0; j < N; j++)
+        nq[j] = hl_system_coord(sys, j), np[j] = hl_system_momentum(sys, j);
+    if (st == HL_OK)
+        st = hl_tape_hamiltonian(&tape, hl_system_pool(sys), hl_system_H_expr(sys), N, nq, np,
+                                 0, NULL, NULL, err);
+    if (st == HL_OK)
+        st = hl_flow_new(&fl, tape, 1e-15, 1e-15, err);
+    double maxd = 0, t = 0;
+    for (int n = 1; n <= 8 && st == HL_OK; n++) {
+        st = hl_exact_flow_step(z, dt, f, err);
+        if (st == HL_OK)
+            st = hl_flow_evolve(fl, &t, n * dt, r, err);
+        for (int i = 0; i < 2 * N && st == HL_OK; i++)
+            maxd = fmax(maxd, fabs(z[i] - r[i]));
+    }
+    if (st == HL_OK) {
+        hl_buf_printf(out, "after 8 exact steps of D = %g:", dt);
+        for (int i = 0; i < 2 * N; i++) {
+            char *nm = cli_image_name(sys, i);
+            hl_buf_printf(out, " %s = %.17g", nm, z[i]);
+            free(nm);
+        }
+        hl_buf_printf(out, "\nmax difference from the Taylor integrator (tol 1e-15): %.3g\n",
+                      maxd);
+        *code = maxd < 1e-11 ? CLI_OK : CLI_FAILS;
+    }
+    hl_flow_free(fl);
+    hl_tape_free(tape);
+    hl_exact_flow_free(f);
+    return st;
+}
+
 static int run(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_error *err)
 {
+    if ((ex.aa != NULL || ex.steps || ex.init != NULL) && o->format == CLI_JSON)
+        return hl_error_set(err, HL_EUNSUP, NULL, -1, 0,
+                            "--json is not available with --steps, --action-angle or --init yet");
+    if (ex.aa != NULL)
+        return run_aa(out, code, sys, o, err);
+    if (ex.steps)
+        return run_steps(out, code, sys, o, err);
+    if (ex.init != NULL)
+        return run_numeric(out, code, sys, o, err);
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     int M = 2 * hl_system_ndof(sys), n = o->have_order ? o->order : 8;
     hl_alg *img = hl_alg_vec_new(M, ctx), *br = hl_alg_vec_new(M * M, ctx);
@@ -176,8 +562,31 @@ static int check(const cli_opts *o, const cli_command *cmd, const char **extra)
     return -1;
 }
 
+static void found_opt(void *arg, int k, const char *value)
+{
+    (void)arg;
+    if (k == 0)
+        ex.init = value;
+    else if (k == 1)
+        ex.aa = value;
+    else if (k == 2)
+        ex.dt = value;
+    else
+        ex.steps = 1;
+}
+
 int cmd_exact(int argc, char **argv)
 {
     static const cli_spec spec = {"exact", CLI_OPT_H | CLI_OPT_ORDER, check, run};
-    return cli_main(argc, argv, &spec);
+    static const cli_own own[] = {
+        {"--init", 0}, {"--action-angle", 0}, {"--dt", 0}, {"--steps", 1}};
+    memset(&ex, 0, sizeof ex);
+    char **av = hl_xmalloc((size_t)(argc + 1) * sizeof *av);
+    memcpy(av, argv, (size_t)(argc + 1) * sizeof *av);
+    int ac = argc;
+    int rc = cli_take_own(&ac, av, own, 4, found_opt, NULL, cli_find("exact"));
+    if (rc < 0)
+        rc = cli_main(ac, av, &spec);
+    free(av);
+    return rc;
 }

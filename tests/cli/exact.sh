@@ -45,4 +45,39 @@ e = [s for s in d["schemes"] if s["name"] == "exact"][0]
 assert e["exact"] and e["quadratic_only"] and e["symplectic"] and not e["implicit"]' "$tmp/out" &&
     ok || bad "schemes: exact not listed as such"
 
+# issue 6: the seven steps of §3 for the oscillator end in the rotation
+run 0 exact -H '(p^2+x^2)/2' --steps
+has_line '  theta = atan(x/p)'
+has_line '  x = sqrt(2*I)*sin(theta)'
+has_line '  X = x*cos(D) + p*sin(D)'
+has_line 'check the action-angle map: yes'
+has_line 'check the result equals the closed form (max diff 0): yes'
+# symbolic mass and stiffness: the steps hold too
+run 0 exact -H 'p^2/(2*m)+k*q^2/2' --steps
+has_line 'check dK/dq = p, dK/dI = theta: yes'
+# the free particle has no periodic angle
+run 2 exact -H 'p^2/2 + g*q' --steps
+err_has "no periodic angle"
+
+# a user's action-angle map: verified, or rejected naming the condition (exit 1)
+AA='theta = atan(x/p); I = (x^2+p^2)/2; x = sqrt(2*I)*sin(theta); p = sqrt(2*I)*cos(theta)'
+run 0 exact -H '(p^2+x^2)/2' --action-angle "$AA; nu = 1"
+has_line '  X = sqrt(x^2 + p^2)*sin(atan(x/p) + D)'
+run 1 exact -H '(p^2+x^2)/2' --action-angle "$AA; nu = 2"
+has_line 'action-angle map rejected: {theta, H} = nu(I) fails: the angle does not advance at the frequency nu(I)'
+run 1 exact -H '(p^2+x^2)/2' --action-angle 'theta = x; I = p; x = theta; p = I; nu = 1'
+has_line 'action-angle map rejected: {I, H} = 0 fails: I is not an integral of motion'
+run 2 exact -H '(p^2+x^2)/2' --action-angle 'theta = x; I = p'
+err_has "lacks"
+
+# numeric exact scheme of the pendulum: period 4 K(sin^2(0.65)) (mpmath-free:
+# the value 7.0192503118445466 from Arb's elliptic K, 25 digits)
+run 0 exact -H 'p^2/2 - cos(q)' --init q=1.3,p=0
+python3 -c 'import re, sys; t = open(sys.argv[1]).read()
+T = float(re.search(r"period T = (\S+),", t).group(1)); assert abs(T - 7.019250311844546606) < 1e-14, T
+d = float(re.search(r"integrator \(tol 1e-15\): (\S+)", t).group(1)); assert d < 1e-13, d' "$tmp/out" &&
+    ok || bad "pendulum period or steps: $(cat "$tmp/out")"
+run 2 exact -H 'p^2/2 - cos(q)' --init q=0,p=2.5
+err_has "unbounded orbit"
+
 finish

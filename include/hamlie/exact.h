@@ -1,0 +1,83 @@
+/* hamlie — exact schemes for integrable systems (§3 of the paper).
+ *
+ * An exact scheme maps z to the flow exp(D g) z for every step D, so it has
+ * no discretization error at all.  Two numeric constructions:
+ *
+ *   quadratic H (any N):  z' = A z + b with A = J Hess(H), b = J grad H(0)
+ *                         constant; the step is the matrix exponential of
+ *                         [[A, b], [0, 0]] times dt, computed with Arb
+ *                         (arb_mat_exp, 128 bits) and rounded to double.
+ *   1 dof, bounded orbit: the orbit of the current energy E is tabulated
+ *                         once over one period T(E) (turning point by root
+ *                         finding on H(q,0) = E, period and samples by the
+ *                         Taylor integrator's polynomials, see exact.c);
+ *                         a step finds the time t(q,p) since the turning
+ *                         point on that table (the angle is 2 pi t / T),
+ *                         advances it by dt mod T and maps back.  The table
+ *                         is rebuilt when the energy of z changes.
+ *
+ * Requirements of the 1-dof construction: H(q,p) = H(q,-p) (time-reversal
+ * symmetric, true for p^2/2m + V(q)), E below the barrier on both sides;
+ * unbounded orbits (rotation of the pendulum, escape over a Morse well) and
+ * separatrices are refused with HL_EDOM naming the reason.
+ */
+#ifndef HAMLIE_EXACT_H
+#define HAMLIE_EXACT_H
+
+#include "hamlie/error.h"
+#include "hamlie/alg.h"
+#include "hamlie/ham.h"
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The closed form for a quadratic H is the scheme layer's
+ * hl_scheme_linear_flow (scheme.h): the catalog's "exact". */
+
+/* ---- a user's action-angle map (1 dof) ---------------------------------- */
+
+/* "theta = f(q,p); I = g(q,p); q = r(theta,I); p = s(theta,I); nu = n(I)"
+ * (the coordinate and momentum under their own names).  Borrowed from the
+ * system's pool. */
+typedef struct hl_exact_aa {
+    const hl_expr *theta, *I, *q, *p, *nu;
+} hl_exact_aa;
+
+int hl_exact_aa_read(hl_exact_aa *aa, hl_system *sys, const char *spec, hl_error *err);
+
+/* *ok = 0 and why = the first failing condition of: {theta, I} = 1;
+ * {I, H} = 0; {theta, H} = nu(I); q, p the inverse (numerically at points
+ * with p > 0, the branch of an atan angle). */
+int hl_exact_aa_verify(int *ok, char *why, size_t whylen, const hl_exact_aa *aa,
+                       hl_system *sys, hl_error *err);
+
+/* The exact scheme Q = r(theta(q,p) + nu D, I(q,p)), P = s(...), unsimplified. */
+int hl_exact_aa_scheme(hl_alg *images, const hl_exact_aa *aa, hl_system *sys, hl_error *err);
+
+/* ---- numeric exact flow ------------------------------------------------ */
+
+typedef struct hl_exact_flow hl_exact_flow;
+
+/* quadratic H: exp(D A); otherwise 1 dof: quadrature along the orbit.
+ * Symbolic parameters must have values.  HL_EUNSUP for N > 1 non-quadratic. */
+int hl_exact_flow_new(hl_exact_flow **out, hl_system *sys, hl_error *err);
+void hl_exact_flow_free(hl_exact_flow *f); /* NULL is a no-op */
+
+/* z (2N) advanced in place by dt (any sign); flow is an hl_exact_flow.
+ * Nonzero on failure (unbounded orbit, separatrix), z unchanged. */
+int hl_exact_flow_step(double *z, double dt, void *flow, hl_error *err);
+
+/* 1 if the flow is the linear (matrix exponential) kind. */
+int hl_exact_flow_is_linear(const hl_exact_flow *f);
+
+/* Period T(E) of the orbit through z (1-dof kind; the quadratic kind gives
+ * HL_EUNSUP).  Builds the orbit table for that energy. */
+int hl_exact_flow_period(double *T, const double *z, hl_exact_flow *f, hl_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
