@@ -163,6 +163,9 @@ int hl_scheme_compose(hl_scheme **out, const char *name, const char *text, int r
  * reads it back); *map is malloc'd. */
 int hl_scheme_linear_flow(hl_alg *images, hl_system *sys, hl_error *err);
 int hl_scheme_linear_flow_map(char **map, hl_system *sys, hl_error *err);
+/* 1 when hl_scheme_linear_flow succeeds for sys (the catalog's "exact"
+ * applies), else 0. */
+int hl_scheme_linear_flow_applies(hl_system *sys);
 
 /* ---- the symbolic reading ---------------------------------------------- */
 

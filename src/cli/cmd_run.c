@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "cli/cli.h"
+#include "hamlie/exact.h"
 #include "hamlie/run.h"
 #include "hamlie/runplot.h"
 
@@ -809,11 +810,24 @@ done:
     return rc;
 }
 
-static int build(hl_run **run, hl_scheme **sch, hl_system *sys, const run_opts *r,
-                 const cli_opts *o, hl_error *err)
+/* --scheme exact beyond the closed form of a quadratic H: the exact flow
+ * of exact.h (action-angle by quadrature for one dof) as the run's stepper. */
+static int build_exact(hl_run **run, hl_exact_flow **ex, hl_system *sys, hl_error *err)
+{
+    int st = hl_exact_flow_new(ex, sys, err);
+    if (st == HL_OK)
+        st = hl_run_new_stepper(run, sys, hl_exact_flow_step, *ex, err);
+    return st;
+}
+
+static int build(hl_run **run, hl_scheme **sch, hl_exact_flow **ex, hl_system *sys,
+                 const run_opts *r, const cli_opts *o, hl_error *err)
 {
     int st = HL_OK;
-    if (!adaptive(r)) {
+    if (r->scheme != NULL && strcmp(r->scheme, "exact") == 0 &&
+        !hl_scheme_linear_flow_applies(sys))
+        st = build_exact(run, ex, sys, err);
+    else if (!adaptive(r)) {
         if (o->map != NULL) {
             if ((st = hl_scheme_from_map(sch, o->map, sys, err)) != HL_OK)
                 hl_error_prefix(err, "in --map");
@@ -823,7 +837,7 @@ static int build(hl_run **run, hl_scheme **sch, hl_system *sys, const run_opts *
         } else
             st = hl_scheme_new(sch, r->scheme, o->have_order ? o->order : 0, sys, err);
     }
-    if (st == HL_OK)
+    if (st == HL_OK && *run == NULL)
         st = hl_run_new(run, sys, *sch, err);
     for (int i = 0; st == HL_OK && i < r->nobserve; i++)
         if ((st = hl_run_observe(*run, r->observe[i], err)) != HL_OK)
@@ -864,13 +878,15 @@ int cmd_run(int argc, char **argv)
         hl_error_prefix(&err, "in --init");
         rc = cli_fail(&err);
     }
-    if (rc < 0 && build(&run, &sch, sys, &r, &o, &err) != HL_OK)
+    hl_exact_flow *ex = NULL;
+    if (rc < 0 && build(&run, &sch, &ex, sys, &r, &o, &err) != HL_OK)
         rc = cli_fail(&err);
     if (rc < 0)
         rc = r.orders != NULL    ? do_orders(run, sys, &r, &o, z0, cmd)
              : r.digits_s != NULL ? do_run_arb(run, sys, &r, &o)
                                   : do_run(run, sys, &r, &o, z0);
     hl_run_free(run);
+    hl_exact_flow_free(ex);
     hl_scheme_free(sch);
     hl_system_free(sys);
     cli_opts_clear(&o);

@@ -204,6 +204,19 @@ int hl_scheme_linear_flow(hl_alg *images, hl_system *sys, hl_error *err)
     return st;
 }
 
+int hl_scheme_linear_flow_applies(hl_system *sys)
+{
+    if (!hl_system_has_H(sys))
+        return 0;
+    hl_alg_ctx *ctx = hl_system_ctx(sys);
+    int M = 2 * hl_system_ndof(sys);
+    hl_alg *img = hl_alg_vec_new(M, ctx);
+    hl_error err;
+    int st = hl_scheme_linear_flow(img, sys, &err);
+    hl_alg_vec_free(img, M, ctx);
+    return st == HL_OK;
+}
+
 int hl_scheme_linear_flow_map(char **map, hl_system *sys, hl_error *err)
 {
     *map = NULL;

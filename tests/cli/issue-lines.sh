@@ -2,8 +2,7 @@
 # The command lines of the issues, run as written (with the values an issue
 # leaves as "..." filled in): each must exit as stated and say what it is
 # for.  A guard against a name or an option drifting away from what was
-# promised (as `--scheme stormer-verlet` once did).  Issue 6's lines come
-# with it.
+# promised (as `--scheme stormer-verlet` once did).
 # usage (from the repo root): bash tests/cli/issue-lines.sh path/to/hamlie
 set -u
 HAMLIE=${1:?usage: issue-lines.sh path/to/hamlie}
@@ -55,6 +54,18 @@ run 0 run -H "$OSC" --map 'X = x + D*p; P = p - D*x' --dt 0.1 --t 1 --init x=1,p
 run 0 run -H "$PEND" --equations '(Q-q)/D = (p+P)/2; (P-p)/D = -sin((q+Q)/2)' --dt 0.1 --t 1 --init q=1.3,p=0
 run 0 errors -H "$PEND" --scheme rk4 --at 'q=1.3,p=0' --order 8 --numeric
 has_text 'order: 4'
+
+# issue 6: exact schemes
+run 0 exact -H "$OSC" --steps
+has_line '  X = x*cos(D) + p*sin(D)'
+run 0 exact -H '(px^2+py^2)/2+(x^2+4*y^2)/2'
+run 0 exact -H "$PEND" --init q=1.3,p=0
+has_text 'period T = 7.01925031184'
+run 0 exact -H "$OSC" --action-angle 'theta = atan(x/p); I = (p^2+x^2)/2; x = sqrt(2*I)*sin(theta); p = sqrt(2*I)*cos(theta); nu = 1'
+run 0 run -H "$PEND" --scheme exact --dt 0.5 --t 1000 --init q=1.3,p=0 --json
+python3 -c 'import json, sys; d = json.load(open(sys.argv[1]))
+assert d["max_error"] < 1e-12 and d["max_abs_dH"] < 1e-14, d' "$tmp/out" && ok ||
+    bad "run --scheme exact on the pendulum: $(cat "$tmp/out")"
 
 # issue 7: the paper, and plots of any run
 run 0 reproduce --format png

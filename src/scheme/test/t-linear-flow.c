@@ -7,7 +7,7 @@
  *    an independent computation) also where no hand form is written: a
  *    mixed x*p term, a 2-dof H with parameters and linear terms;
  *  - two steps of D are one step of 2D (exact composition) and the map is
- *    canonical;
+ *    canonical; the oscillator's map composed n times is the flow at nD;
  *  - a non-quadratic H and coupled pairs are refused, naming the reason. */
 #include "sch.h"
 
@@ -109,6 +109,41 @@ static void check_group(const char *H)
     hl_system_free(sys);
 }
 
+/* The oscillator's map applied n times (composed symbolically) is the
+ * flow at nD, n = 2..5: x(nD) = x cos nD + p sin nD exactly (issue 6). */
+static void check_power(void)
+{
+    hl_system *s = make_system("(p^2+x^2)/2");
+    hl_alg_ctx *ctx = hl_system_ctx(s);
+    hl_error err;
+    int vars[2] = {hl_system_var_q(s, 0), hl_system_var_p(s, 0)};
+    hl_alg *im = hl_alg_vec_new(2, ctx), *pw = hl_alg_vec_new(2, ctx), *w = hl_alg_vec_new(2, ctx);
+    hl_alg t[2];
+    hl_alg_init(&t[0], ctx);
+    hl_alg_init(&t[1], ctx);
+    images_of(im, s);
+    hl_alg_set(&pw[0], &im[0], ctx);
+    hl_alg_set(&pw[1], &im[1], ctx);
+    for (int n = 2; n <= 5; n++) {
+        for (int i = 0; i < 2; i++) /* pw o im: pw with (x, p) -> im */
+            CHECK(hl_alg_subst(&t[i], &pw[i], 2, vars, im, ctx, &err) == HL_OK);
+        hl_alg_swap(&pw[0], &t[0], ctx);
+        hl_alg_swap(&pw[1], &t[1], ctx);
+        char map[200];
+        snprintf(map, sizeof map, "X = x*cos(%d*D) + p*sin(%d*D); P = p*cos(%d*D) - x*sin(%d*D)",
+                 n, n, n, n);
+        CHECK(hl_system_read_map(w, s, map, &err) == HL_OK);
+        CHECK_MSG(hl_alg_equal(&pw[0], &w[0], ctx) && hl_alg_equal(&pw[1], &w[1], ctx),
+                  "%d steps of D != x(%dD)", n, n);
+    }
+    hl_alg_clear(&t[0], ctx);
+    hl_alg_clear(&t[1], ctx);
+    hl_alg_vec_free(im, 2, ctx);
+    hl_alg_vec_free(pw, 2, ctx);
+    hl_alg_vec_free(w, 2, ctx);
+    hl_system_free(s);
+}
+
 static void check_refused(const char *H, int want, const char *msg)
 {
     hl_system *sys = make_system(H);
@@ -149,6 +184,7 @@ int main(void)
     for (size_t i = 0; i < sizeof group / sizeof *group; i++)
         check_group(group[i]);
 
+    check_power();
     check_refused("p^2/2 - cos(q)", HL_EINVAL, "not quadratic");
     check_refused("(px^2+py^2)/2 + (x^2+y^2)/2 + x*y", HL_EUNSUP, "pairs of x and y");
     return HL_TEST_END();
