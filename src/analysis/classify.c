@@ -56,6 +56,26 @@ int hl_errfield_is_hamiltonian(int *yes, const hl_alg *v, hl_system *sys, hl_err
     return st;
 }
 
+/* Is v = J grad h exactly: v(q_j) = dh/dp_j, v(p_j) = -dh/dq_j? */
+static int is_J_grad(int *yes, const hl_alg *h, const hl_alg *v, hl_system *sys, hl_error *err)
+{
+    hl_alg_ctx *ctx = hl_system_ctx(sys);
+    int N = hl_system_ndof(sys), st = HL_OK, ok = 1;
+    hl_alg d;
+    hl_alg_init(&d, ctx);
+    for (int j = 0; j < N && ok && st == HL_OK; j++) {
+        st = hl_alg_diff(&d, h, hl_system_var_p(sys, j), ctx, err);
+        ok = st == HL_OK && hl_alg_equal(&d, &v[j], ctx);
+        if (ok && (st = hl_alg_diff(&d, h, hl_system_var_q(sys, j), ctx, err)) == HL_OK) {
+            hl_alg_neg(&d, &d, ctx);
+            ok = hl_alg_equal(&d, &v[N + j], ctx);
+        }
+    }
+    hl_alg_clear(&d, ctx);
+    *yes = ok && st == HL_OK;
+    return st;
+}
+
 /* h from the Euler formula: E = sum_j p_j a_j - q_j b_j = sum_d d h_d, for E a
  * polynomial in the phase variables (coefficients may involve parameters);
  * then h is checked against v.  *found = 0 when E is not such a polynomial
@@ -114,14 +134,8 @@ static int euler_h(int *found, hl_alg *h, const hl_alg *v, hl_system *sys, hl_er
     if (poly)
         st = hl_alg_div(h, h, &den, ctx, err);
     int ok = poly && st == HL_OK;
-    for (int j = 0; j < N && ok && st == HL_OK; j++) {
-        st = hl_alg_diff(&d, h, hl_system_var_p(sys, j), ctx, err);
-        ok = st == HL_OK && hl_alg_equal(&d, &v[j], ctx);
-        if (ok && (st = hl_alg_diff(&d, h, hl_system_var_q(sys, j), ctx, err)) == HL_OK) {
-            hl_alg_neg(&d, &d, ctx);
-            ok = hl_alg_equal(&d, &v[N + j], ctx);
-        }
-    }
+    if (ok)
+        st = is_J_grad(&ok, h, v, sys, err);
     *found = ok && st == HL_OK;
     free(exp);
     hl_alg_clear(&den, ctx);
@@ -161,14 +175,8 @@ static int antiderivative_h(int *found, hl_alg *h, const hl_alg *v, hl_system *s
         if (st == HL_OK && ok)
             hl_alg_add(h, h, &I, ctx);
     }
-    for (int j = 0; j < N && ok && st == HL_OK; j++) {
-        st = hl_alg_diff(&d, h, hl_system_var_p(sys, j), ctx, err);
-        ok = st == HL_OK && hl_alg_equal(&d, &v[j], ctx);
-        if (ok && (st = hl_alg_diff(&d, h, hl_system_var_q(sys, j), ctx, err)) == HL_OK) {
-            hl_alg_neg(&d, &d, ctx);
-            ok = hl_alg_equal(&d, &v[N + j], ctx);
-        }
-    }
+    if (ok && st == HL_OK)
+        st = is_J_grad(&ok, h, v, sys, err);
     *found = ok && st == HL_OK;
     hl_alg_clear(&d, ctx);
     hl_alg_clear(&g, ctx);
