@@ -39,8 +39,9 @@ const char cmd_exact_help[] =
     "  --latex              print the images as LaTeX\n"
     "  -h, --help           show this help\n"
     "\n"
-    "  --steps              the seven steps of §3 (oscillator p^2/(2m) + k q^2/2,\n"
-    "                       m, k numbers or symbols), each printed, then checked\n"
+    "  --steps              the seven steps of §3 for p^2/(2m) + V(q), V of degree\n"
+    "                       <= 2: oscillator k q^2/2, uniform field g q, free\n"
+    "                       particle (m, k, g numbers or symbols), each printed, then checked\n"
     "                       as an action-angle map and against the closed form\n"
     "  --action-angle MAP   'theta = ...; I = ...; q = ...; p = ...; nu = ...'\n"
     "                       (1 dof): verified ({theta,I} = 1, {I,H} = 0,\n"
@@ -277,6 +278,172 @@ static int run_aa(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_
 }
 
 /* The seven steps for H = p^2/(2m) + k q^2/2 (H = a p^2 + b q^2). */
+/* The checks that end --steps: dK/dq = p and dK/dI = theta numerically
+ * (eps = 1, p > 0; I from Istr at the point), the action-angle map spec
+ * through hl_exact_aa_verify, the scheme against the closed form. */
+static int steps_check(hl_buf *out, int *code, hl_system *sys, const cli_opts *o,
+                       const char *Ks, const char *th, const char *Istr, const char *spec,
+                       hl_error *err)
+{
+    hl_pool *pool = hl_system_pool(sys);
+    const char *q = hl_system_coord(sys, 0), *p = hl_system_momentum(sys, 0);
+    int st = HL_OK;
+    /* checks: dK/dq = p and dK/dI = theta numerically (eps = 1, p > 0);
+     * the map through hl_exact_aa_verify; the scheme against the closed form */
+    int ok = 1;
+    double maxd = 0;
+    {
+        const hl_expr *Ke = NULL, *te = NULL, *Ie = NULL;
+        st = hl_parse(&Ke, pool, Ks, err);
+        if (st == HL_OK)
+            st = hl_parse(&te, pool, th, err);
+        if (st == HL_OK)
+            st = hl_parse(&Ie, pool, Istr, err);
+        if (st == HL_OK) {
+            const char *nm1[] = {"eps"};
+            const hl_expr *one[] = {hl_num_si(pool, 1)};
+            Ke = hl_expr_subst(pool, Ke, 1, nm1, one);
+            const hl_expr *dKdI = hl_expr_diff(pool, Ke, "I");
+            const hl_expr *dKdq = hl_expr_diff(pool, Ke, q);
+            static const double pts[][2] = {{0.3, 0.8}, {-0.5, 0.2}, {0.1, 1.7}};
+            for (int i = 0; i < 3 && st == HL_OK; i++) {
+                /* at (q, p): I = I(q, p) */
+                const char *names[] = {q, p, "I"};
+                double Iv = NAN, a = NAN, b = NAN, c = NAN, vals[3] = {pts[i][0], pts[i][1], 0};
+                if (hl_expr_eval_d(&Iv, Ie, 2, names, vals, err) != HL_OK)
+                    break; /* symbolic m, k: skip the numeric check of K */
+                vals[2] = Iv;
+                if (hl_expr_eval_d(&a, dKdq, 3, names, vals, err) != HL_OK ||
+                    hl_expr_eval_d(&b, dKdI, 3, names, vals, err) != HL_OK ||
+                    hl_expr_eval_d(&c, te, 3, names, vals, err) != HL_OK)
+                    break;
+                ok = ok && fabs(a - vals[1]) < 1e-12 && fabs(b - c) < 1e-12;
+            }
+            st = HL_OK;
+        }
+    }
+    hl_exact_aa aa;
+    char why[400] = "";
+    int aok = 0, cok = 0;
+    hl_alg *img = hl_alg_vec_new(2, hl_system_ctx(sys));
+    if (st == HL_OK)
+        st = hl_exact_aa_read(&aa, sys, spec, err);
+    if (st == HL_OK)
+        st = hl_exact_aa_verify(&aok, why, sizeof why, &aa, sys, err);
+    if (st == HL_OK)
+        st = hl_exact_aa_scheme(img, &aa, sys, err);
+    if (st == HL_OK)
+        st = agree_with_closed(&cok, &maxd, img, sys, err);
+    if (st == HL_OK) {
+        hl_buf_puts(out, "result: Q = r(theta(q, gamma) + nu D, gamma), P = s(...):\n");
+        put_images(out, img, sys, o);
+        hl_alg *cf = hl_alg_vec_new(2, hl_system_ctx(sys));
+        st = hl_scheme_linear_flow(cf, sys, err);
+        if (st == HL_OK) {
+            hl_buf_puts(out, "simplified (the closed form it equals):\n");
+            put_images(out, cf, sys, o);
+        }
+        hl_alg_vec_free(cf, 2, hl_system_ctx(sys));
+        hl_buf_printf(out, "check dK/dq = p, dK/dI = theta: %s\n", ok ? "yes" : "NO");
+        hl_buf_printf(out, "check the action-angle map: %s%s\n", aok ? "yes" : "NO: ", why);
+        hl_buf_printf(out, "check the result equals the closed form (max diff %.2g): %s\n",
+                      maxd, cok ? "yes" : "NO");
+        *code = ok && aok && cok ? CLI_OK : CLI_FAILS;
+    }
+    hl_alg_vec_free(img, 2, hl_system_ctx(sys));
+    return st;
+}
+
+/* Is H = p^2/(2m) + g q (+ a constant), m and g free of q and p?  Then
+ * *ms and *gs are their texts (malloc'd). */
+static int linear_potential(char **ms, char **gs, hl_system *sys)
+{
+    hl_alg_ctx *ctx = hl_system_ctx(sys);
+    int vq = hl_system_var_q(sys, 0), vp = hl_system_var_p(sys, 0), yes = 0;
+    hl_alg *a = hl_alg_vec_new(5, ctx); /* H_p, H_pp, H_pq, H_q, H_qq */
+    hl_error err;
+    if (hl_alg_diff(&a[0], hl_system_H(sys), vp, ctx, &err) == HL_OK &&
+        hl_alg_diff(&a[1], &a[0], vp, ctx, &err) == HL_OK &&
+        hl_alg_diff(&a[2], &a[0], vq, ctx, &err) == HL_OK &&
+        hl_alg_diff(&a[3], hl_system_H(sys), vq, ctx, &err) == HL_OK &&
+        hl_alg_diff(&a[4], &a[3], vq, ctx, &err) == HL_OK) {
+        yes = !hl_alg_is_zero(&a[1], ctx) && hl_alg_is_zero(&a[2], ctx) &&
+              hl_alg_is_zero(&a[4], ctx);
+        for (int i = 1; i <= 3; i += 2)
+            yes = yes && !hl_alg_depends_on(&a[i], vq, ctx) && !hl_alg_depends_on(&a[i], vp, ctx);
+        hl_alg_one(&a[0], ctx);
+        if (yes && hl_alg_div(&a[0], &a[0], &a[1], ctx, &err) == HL_OK) { /* m = 1/H_pp */
+            *ms = hl_format_alg(&a[0], ctx, hl_system_pool(sys), HL_STYLE_TEXT);
+            *gs = hl_format_alg(&a[3], ctx, hl_system_pool(sys), HL_STYLE_TEXT);
+        } else
+            yes = 0;
+    }
+    hl_alg_vec_free(a, 5, ctx);
+    return yes;
+}
+
+/* The seven steps for the free particle (g = 0: I = p, theta = q, an angle
+ * that does not come back, nu = I/m) and the uniform field (g != 0: I = H,
+ * K = -(2m(I - g q))^(3/2)/(3 m g), theta = dK/dI = -p/g in units of time,
+ * nu = 1). */
+static int run_steps_linear(hl_buf *out, int *code, hl_system *sys, const cli_opts *o,
+                            const char *ms, const char *gs, hl_error *err)
+{
+    const char *q = hl_system_coord(sys, 0), *p = hl_system_momentum(sys, 0);
+    int free_ = strcmp(gs, "0") == 0;
+    /* f[0] with the letters m and g, as printed; f[1] with their values, to check */
+    char I[2][2048], K[2][2048], th[2][1024], rq[2][2048], rp[2][1024], nu[2][1024], pf[1024];
+    for (int v = 0; v < 2; v++) {
+        char m[256], g[256];
+        snprintf(m, sizeof m, v ? "(%s)" : "m", ms);
+        snprintf(g, sizeof g, v ? "(%s)" : "g", gs);
+        if (free_) {
+            snprintf(I[v], sizeof I[v], "%s", p);
+            snprintf(K[v], sizeof K[v], "I*%s", q);
+            snprintf(th[v], sizeof th[v], "%s", q);
+            snprintf(rq[v], sizeof rq[v], "theta");
+            snprintf(rp[v], sizeof rp[v], "I");
+            snprintf(nu[v], sizeof nu[v], "I/%s", m);
+        } else {
+            snprintf(I[v], sizeof I[v], "%s^2/(2*%s) + %s*%s", p, m, g, q);
+            snprintf(K[v], sizeof K[v], "-eps*(2*%s*(I - %s*%s))^(3/2)/(3*%s*%s)", m, g, q, m, g);
+            snprintf(th[v], sizeof th[v], "-%s/%s", p, g);
+            snprintf(rq[v], sizeof rq[v], "(I - %s^2*theta^2/(2*%s))/%s", g, m, g);
+            snprintf(rp[v], sizeof rp[v], "-%s*theta", g);
+            snprintf(nu[v], sizeof nu[v], "1");
+        }
+    }
+    if (free_)
+        hl_buf_printf(out, "H = %s^2/(2*m), a free particle, with m = %s\n", p, ms);
+    else
+        hl_buf_printf(out, "H = %s^2/(2*m) + g*%s, a uniform field, with m = %s, g = %s\n", p, q,
+                      ms, gs);
+    hl_buf_puts(out, "step 1: the integral of motion as the action\n");
+    put_formula(out, "I", I[0], sys, o);
+    hl_buf_puts(out, "step 2: the momentum from I (eps = +1 or -1, the branch)\n");
+    snprintf(pf, sizeof pf, free_ ? "I" : "eps*sqrt(2*m*(I - g*%s))", q);
+    put_formula(out, p, pf, sys, o);
+    hl_buf_puts(out, "step 3: the generating function K(q, I) = int p dq\n");
+    put_formula(out, "K", K[0], sys, o);
+    hl_buf_puts(out, free_ ? "step 4: the angle theta = dK/dI (it does not come back)\n"
+                           : "step 4: the angle theta = dK/dI (in units of time)\n");
+    put_formula(out, "theta", th[0], sys, o);
+    hl_buf_puts(out, "step 5: the inverse\n");
+    put_formula(out, q, rq[0], sys, o);
+    put_formula(out, p, rp[0], sys, o);
+    hl_buf_puts(out, "step 6: the frequency nu = {theta, H}\n");
+    put_formula(out, "nu", nu[0], sys, o);
+    hl_buf_puts(out, "step 7: the constant of the action\n");
+    put_formula(out, "gamma", I[0], sys, o);
+    hl_buf spec;
+    hl_buf_init(&spec);
+    hl_buf_printf(&spec, "theta = %s; I = %s; %s = %s; %s = %s; nu = %s", th[1], I[1], q, rq[1],
+                  p, rp[1], nu[1]);
+    int st = steps_check(out, code, sys, o, K[1], th[1], I[1], spec.s, err);
+    hl_buf_clear(&spec);
+    return st;
+}
+
 static int run_steps(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_error *err)
 {
     if (hl_system_ndof(sys) != 1)
@@ -319,11 +486,18 @@ static int run_steps(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, 
     hl_alg_clear(&d, ctx);
     hl_alg_clear(&e, ctx);
     hl_alg_clear(&z, ctx);
+    char *lm = NULL, *lg = NULL;
+    if (st == HL_OK && !form && linear_potential(&lm, &lg, sys)) {
+        free(ms), free(ks);
+        st = run_steps_linear(out, code, sys, o, lm, lg, err);
+        free(lm), free(lg);
+        return st;
+    }
     if (st == HL_OK && !form)
         st = hl_error_set(err, HL_EUNSUP, NULL, -1, 0,
-                          "--steps carries out §3 for the oscillator p^2/(2m) + k q^2/2 "
-                          "(k != 0); the free particle and the uniform field have no "
-                          "periodic angle: use the closed form (without --steps)");
+                          "--steps carries out §3 for H = p^2/(2m) + V(q) with V of degree "
+                          "<= 2 (oscillator, uniform field, free particle); for another "
+                          "quadratic H use the closed form (without --steps)");
     if (st != HL_OK) {
         free(ms), free(ks);
         return st;
@@ -374,39 +548,6 @@ static int run_steps(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, 
     char *rp = hl_xstrdup(F("sqrt(2*%s*I)*cos(sqrt(%s/%s)*theta)", m, k, m));
     hl_buf_clear(&f);
 #undef F
-    /* checks: dK/dq = p and dK/dI = theta numerically (eps = 1, p > 0);
-     * the map through hl_exact_aa_verify; the scheme against the closed form */
-    int ok = 1;
-    double maxd = 0;
-    {
-        const hl_expr *Ke = NULL, *te = NULL;
-        st = hl_parse(&Ke, pool, Ks, err);
-        if (st == HL_OK)
-            st = hl_parse(&te, pool, th, err);
-        if (st == HL_OK) {
-            const char *nm1[] = {"eps"};
-            const hl_expr *one[] = {hl_num_si(pool, 1)};
-            Ke = hl_expr_subst(pool, Ke, 1, nm1, one);
-            const hl_expr *dKdI = hl_expr_diff(pool, Ke, "I");
-            const hl_expr *dKdq = hl_expr_diff(pool, Ke, q);
-            static const double pts[][2] = {{0.3, 0.8}, {-0.5, 0.2}, {0.1, 1.7}};
-            for (int i = 0; i < 3 && st == HL_OK; i++) {
-                /* at (q, p): I = H(q, p) */
-                const char *names[] = {q, p, "I"};
-                const hl_expr *He = hl_system_H_expr(sys);
-                double Iv = NAN, a = NAN, b = NAN, c = NAN, vals[3] = {pts[i][0], pts[i][1], 0};
-                if (hl_expr_eval_d(&Iv, He, 2, names, vals, err) != HL_OK)
-                    break; /* symbolic m, k: skip the numeric check of K */
-                vals[2] = Iv;
-                if (hl_expr_eval_d(&a, dKdq, 3, names, vals, err) != HL_OK ||
-                    hl_expr_eval_d(&b, dKdI, 3, names, vals, err) != HL_OK ||
-                    hl_expr_eval_d(&c, te, 3, names, vals, err) != HL_OK)
-                    break;
-                ok = ok && fabs(a - vals[1]) < 1e-12 && fabs(b - c) < 1e-12;
-            }
-            st = HL_OK;
-        }
-    }
     char *spec = NULL;
     {
         hl_buf sb;
@@ -415,35 +556,9 @@ static int run_steps(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, 
                       th, p, m, k, q, q, rq, p, rp);
         spec = hl_buf_take(&sb);
     }
-    hl_exact_aa aa;
-    char why[400] = "";
-    int aok = 0, cok = 0;
-    hl_alg *img = hl_alg_vec_new(2, hl_system_ctx(sys));
-    if (st == HL_OK)
-        st = hl_exact_aa_read(&aa, sys, spec, err);
-    if (st == HL_OK)
-        st = hl_exact_aa_verify(&aok, why, sizeof why, &aa, sys, err);
-    if (st == HL_OK)
-        st = hl_exact_aa_scheme(img, &aa, sys, err);
-    if (st == HL_OK)
-        st = agree_with_closed(&cok, &maxd, img, sys, err);
-    if (st == HL_OK) {
-        hl_buf_puts(out, "result: Q = r(theta(q, gamma) + nu D, gamma), P = s(...):\n");
-        put_images(out, img, sys, o);
-        hl_alg *cf = hl_alg_vec_new(2, hl_system_ctx(sys));
-        st = hl_scheme_linear_flow(cf, sys, err);
-        if (st == HL_OK) {
-            hl_buf_puts(out, "simplified (the closed form it equals):\n");
-            put_images(out, cf, sys, o);
-        }
-        hl_alg_vec_free(cf, 2, hl_system_ctx(sys));
-        hl_buf_printf(out, "check dK/dq = p, dK/dI = theta: %s\n", ok ? "yes" : "NO");
-        hl_buf_printf(out, "check the action-angle map: %s%s\n", aok ? "yes" : "NO: ", why);
-        hl_buf_printf(out, "check the result equals the closed form (max diff %.2g): %s\n",
-                      maxd, cok ? "yes" : "NO");
-        *code = ok && aok && cok ? CLI_OK : CLI_FAILS;
-    }
-    hl_alg_vec_free(img, 2, hl_system_ctx(sys));
+    char Istr[300];
+    snprintf(Istr, sizeof Istr, "%s^2/(2*%s) + %s*%s^2/2", p, m, k, q);
+    st = steps_check(out, code, sys, o, Ks, th, Istr, spec, err);
     free(spec), free(Ks), free(th), free(rq), free(rp);
     return st;
 }

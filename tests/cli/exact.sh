@@ -55,9 +55,19 @@ has_line 'check the result equals the closed form (max diff 0): yes'
 # symbolic mass and stiffness: the steps hold too
 run 0 exact -H 'p^2/(2*m)+k*q^2/2' --steps
 has_line 'check dK/dq = p, dK/dI = theta: yes'
-# the free particle has no periodic angle
-run 2 exact -H 'p^2/2 + g*q' --steps
-err_has "no periodic angle"
+# the uniform field (theta = -p/g, nu = 1) and the free particle (theta = q,
+# nu = I/m): the seven steps end in the flow, and each check holds
+run 0 exact -H 'p^2/2 + g*q' --steps
+has_line '  theta = -p/g'
+has_line '  Q = q + D*p - D^2*g/2'
+has_line 'check the action-angle map: yes'
+has_line 'check dK/dq = p, dK/dI = theta: yes'
+run 0 exact -H 'p^2/(2*m) + 0*q' --steps
+has_line '  nu = I/m'
+has_line 'check the result equals the closed form (max diff 0): yes'
+# not p^2/(2m) + V(q) with V of degree <= 2: refused
+run 2 exact -H 'p^2/2 + q*p' --steps
+err_has "--steps carries out"
 
 # a user's action-angle map: verified, or rejected naming the condition (exit 1)
 AA='theta = atan(x/p); I = (x^2+p^2)/2; x = sqrt(2*I)*sin(theta); p = sqrt(2*I)*cos(theta)'
