@@ -68,24 +68,7 @@ static void write_run(const char *name, int kind, int n)
     fclose(fp);
 }
 
-static int is_blue(const unsigned char *p) { return p[2] > 180 && p[0] < 110 && p[1] < 110; }
-static int is_red(const unsigned char *p) { return p[0] > 180 && p[1] < 110 && p[2] < 110; }
-
-typedef int (*color_fn)(const unsigned char *);
-
-static int near(const unsigned char *img, const hl_plot_frame *fr, double x, double y, int r,
-                color_fn fn)
-{
-    double px, py;
-    if (!hl_plot_frame_pixel(fr, W, H, x, y, &px, &py))
-        return -1;
-    int n = 0;
-    for (int j = (int)py - r; j <= (int)py + r; j++)
-        for (int i = (int)px - r; i <= (int)px + r; i++)
-            if (i >= 0 && i < W && j >= 0 && j < H)
-                n += fn(img + 3 * ((size_t)j * W + i));
-    return n;
-}
+#include "hl_pixels.h"
 
 static long count(const unsigned char *img, color_fn fn)
 {
