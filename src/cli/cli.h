@@ -87,6 +87,23 @@ typedef struct cli_spec {
 } cli_spec;
 int cli_main(int argc, char **argv, const cli_spec *spec);
 
+/* The start of a command with options of its own (run, errors): argv is
+ * copied into *av (free it after), the own options are taken out
+ * (cli_take_own with own/found), the rest parsed (accept), checked (check,
+ * -1 to go on or an exit code), and the system built from H alone with at
+ * most max_dof degrees of freedom.  o must be zeroed by the caller; *sys is
+ * NULL until built.  Returns -1 to go on, else the exit code. */
+typedef struct cli_begin_spec {
+    const cli_own *own;
+    int nown;
+    void (*found)(void *arg, int k, const char *value);
+    int (*check)(void *arg, cli_opts *o, const cli_command *cmd);
+    unsigned accept;
+    int max_dof;
+} cli_begin_spec;
+int cli_begin(char ***av, cli_opts *o, hl_system **sys, int argc, char **argv,
+              const cli_command *cmd, const cli_begin_spec *spec, void *arg);
+
 /* Print an error with its formula and a caret under err->pos; returns 2. */
 int cli_fail(const hl_error *err);
 

@@ -74,17 +74,10 @@ static void found_opt(void *arg, int k, const char *value)
         *slot[k] = value;
 }
 
-/* errors' own options; the rest goes to cli_parse. */
-static int take_opts(err_opts *r, int *argc, char **argv, const cli_command *cmd)
+/* The usage checks of errors' options, after parsing (cli_begin). */
+static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
 {
-    static const cli_own own[] = {
-        {"--scheme", 0},  {"--equations", 0},         {"--correct", 0},
-        {"--invariants-degree", 0}, {"--at", 0}, {"--numeric", 1}};
-    return cli_take_own(argc, argv, own, 6, found_opt, r, cmd);
-}
-
-static int check_opts(err_opts *r, cli_opts *o, const cli_command *cmd)
-{
+    err_opts *r = arg;
     if (o->H == NULL)
         return cli_usage(cmd, "missing -H: the error analysis needs a Hamiltonian");
     if (o->nargs > 0)
@@ -623,6 +616,18 @@ static void json_analysis(hl_json *j, const hl_errors *e, const hl_errfield *F, 
     hl_json_object_end(j);
 }
 
+/* A JSON array of n expressions, each a string sympy reads. */
+static void json_algs(hl_json *j, const hl_alg *a, int n, hl_system *sys)
+{
+    hl_json_array_begin(j);
+    for (int i = 0; i < n; i++) {
+        char *t = hl_format_alg(&a[i], hl_system_ctx(sys), hl_system_pool(sys), HL_STYLE_SYMPY);
+        hl_json_string(j, t);
+        free(t);
+    }
+    hl_json_array_end(j);
+}
+
 static void write_json(hl_buf *out, result *R, const err_opts *r, const cli_opts *o)
 {
     hl_json j;
@@ -659,25 +664,11 @@ static void write_json(hl_buf *out, result *R, const err_opts *r, const cli_opts
         hl_json_object_begin(&j);
         hl_json_kv_int(&j, "degree", R->invdeg);
         hl_json_key(&j, "polynomial");
-        hl_json_array_begin(&j);
-        for (int i = 0; i < R->ninv_poly; i++) {
-            char *t = hl_format_alg(&R->inv_poly[i], hl_system_ctx(R->sys),
-                                    hl_system_pool(R->sys), HL_STYLE_SYMPY);
-            hl_json_string(&j, t);
-            free(t);
-        }
-        hl_json_array_end(&j);
+        json_algs(&j, R->inv_poly, R->ninv_poly, R->sys);
         hl_json_key(&j, "rational");
-        if (R->inv_dar_app) {
-            hl_json_array_begin(&j);
-            for (int i = 0; i < R->ninv_dar; i++) {
-                char *t = hl_format_alg(&R->inv_dar[i], hl_system_ctx(R->sys),
-                                        hl_system_pool(R->sys), HL_STYLE_SYMPY);
-                hl_json_string(&j, t);
-                free(t);
-            }
-            hl_json_array_end(&j);
-        } else
+        if (R->inv_dar_app)
+            json_algs(&j, R->inv_dar, R->ninv_dar, R->sys);
+        else
             hl_json_null(&j);
         hl_json_object_end(&j);
     } else
@@ -692,16 +683,9 @@ static void write_json(hl_buf *out, result *R, const err_opts *r, const cli_opts
                              hl_system_pool(R->sys), HL_STYLE_SYMPY);
     hl_json_array_end(&j);
     hl_json_key(&j, "hamiltonians");
-    if (R->mh_all) {
-        hl_json_array_begin(&j);
-        for (int k = 1; k <= R->nmod; k++) {
-            char *t = hl_format_alg(&R->mh[k], hl_system_ctx(R->sys), hl_system_pool(R->sys),
-                                    HL_STYLE_SYMPY);
-            hl_json_string(&j, t);
-            free(t);
-        }
-        hl_json_array_end(&j);
-    } else
+    if (R->mh_all)
+        json_algs(&j, R->mh + 1, R->nmod, R->sys);
+    else
         hl_json_null(&j);
     hl_json_object_end(&j);
     hl_json_key(&j, "time");
@@ -957,22 +941,14 @@ int cmd_errors(int argc, char **argv)
     memset(&r, 0, sizeof r);
     memset(&o, 0, sizeof o);
     memset(&R, 0, sizeof R);
-    char **av = hl_xmalloc((size_t)(argc + 1) * sizeof *av);
-    memcpy(av, argv, (size_t)argc * sizeof *av);
-    int ac = argc;
-    int rc = take_opts(&r, &ac, av, cmd);
-    if (rc < 0)
-        rc = cli_parse(&o, ac, av, CLI_OPT_H | CLI_OPT_MAP | CLI_OPT_ORDER, cmd);
-    if (rc < 0)
-        rc = check_opts(&r, &o, cmd);
-    if (rc < 0) {
-        rc = cli_system(&R.sys, &o, NULL);
-        rc = rc == CLI_OK ? -1 : rc;
-    }
-    if (rc < 0 && hl_system_ndof(R.sys) > 64) {
-        fprintf(stderr, "hamlie: error: errors handles at most 64 degrees of freedom\n");
-        rc = CLI_ERROR;
-    }
+    /* errors' own options, in found_opt's order; the rest goes to cli_parse */
+    static const cli_own own[] = {
+        {"--scheme", 0},  {"--equations", 0},         {"--correct", 0},
+        {"--invariants-degree", 0}, {"--at", 0}, {"--numeric", 1}};
+    static const cli_begin_spec spec = {own, 6, found_opt, check_opts,
+                                        CLI_OPT_H | CLI_OPT_MAP | CLI_OPT_ORDER, 64};
+    char **av;
+    int rc = cli_begin(&av, &o, &R.sys, argc, argv, cmd, &spec, &r);
     hl_error err;
     hl_error_clear(&err);
     if (rc < 0) {

@@ -94,18 +94,6 @@ static void found_opt(void *arg, int k, const char *value)
         *(k == 12 ? &r->plot : &r->formats) = value;
 }
 
-/* run's own options (in found_opt's order; --observe repeats); the rest,
- * in order, goes to cli_parse. */
-static int take_opts(run_opts *r, int *argc, char **argv, const cli_command *cmd)
-{
-    static const cli_own own[] = {
-        {"--scheme", 0}, {"--equations", 0}, {"--init", 0},  {"--out", 0},
-        {"--orders", 0}, {"--dt", 0},        {"--t", 0},     {"--tol", 0},
-        {"--every", 0},  {"--digits", 0},    {"--observe", 0}, {"--no-reference", 1},
-        {"--plot", 0},   {"--format", 0}};
-    return cli_take_own(argc, argv, own, (int)(sizeof own / sizeof own[0]), found_opt, r, cmd);
-}
-
 static int parse_double(double *v, const char *s, const char *opt, const cli_command *cmd)
 {
     char *end;
@@ -116,8 +104,10 @@ static int parse_double(double *v, const char *s, const char *opt, const cli_com
     return -1;
 }
 
-static int check_opts(run_opts *r, const cli_opts *o, const cli_command *cmd)
+/* The usage checks of run's options, after parsing (cli_begin). */
+static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
 {
+    run_opts *r = arg;
     int rc = -1;
     if (o->H == NULL)
         return cli_usage(cmd, "missing -H: a run needs a Hamiltonian");
@@ -852,28 +842,22 @@ int cmd_run(int argc, char **argv)
     cli_opts o;
     memset(&r, 0, sizeof r);
     memset(&o, 0, sizeof o);
-    char **av = hl_xmalloc((size_t)(argc + 1) * sizeof *av);
-    memcpy(av, argv, (size_t)argc * sizeof *av);
-    int ac = argc;
-    int rc = take_opts(&r, &ac, av, cmd);
-    if (rc < 0)
-        rc = cli_parse(&o, ac, av, CLI_OPT_H | CLI_OPT_MAP | CLI_OPT_ORDER, cmd);
-    if (rc < 0)
-        rc = check_opts(&r, &o, cmd);
-    hl_system *sys = NULL;
+    /* run's own options, in found_opt's order (--observe repeats) */
+    static const cli_own own[] = {
+        {"--scheme", 0}, {"--equations", 0}, {"--init", 0},  {"--out", 0},
+        {"--orders", 0}, {"--dt", 0},        {"--t", 0},     {"--tol", 0},
+        {"--every", 0},  {"--digits", 0},    {"--observe", 0}, {"--no-reference", 1},
+        {"--plot", 0},   {"--format", 0}};
+    static const cli_begin_spec spec = {own, (int)(sizeof own / sizeof own[0]), found_opt,
+                                        check_opts, CLI_OPT_H | CLI_OPT_MAP | CLI_OPT_ORDER, 64};
+    char **av;
+    hl_system *sys;
+    int rc = cli_begin(&av, &o, &sys, argc, argv, cmd, &spec, &r);
     hl_scheme *sch = NULL;
     hl_run *run = NULL;
-    if (rc < 0) {
-        rc = cli_system(&sys, &o, NULL); /* H alone defines the system */
-        rc = rc == CLI_OK ? -1 : rc;
-    }
     hl_error err;
     hl_error_clear(&err);
     double z0[2 * 64];
-    if (rc < 0 && hl_system_ndof(sys) > 64) {
-        fprintf(stderr, "hamlie: error: run handles at most 64 degrees of freedom\n");
-        rc = CLI_ERROR;
-    }
     if (rc < 0 && hl_run_init_values(z0, sys, r.init, &err) != HL_OK) {
         hl_error_prefix(&err, "in --init");
         rc = cli_fail(&err);

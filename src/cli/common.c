@@ -210,3 +210,27 @@ int cli_main(int argc, char **argv, const cli_spec *spec)
     cli_opts_clear(&o);
     return rc;
 }
+
+int cli_begin(char ***av, cli_opts *o, hl_system **sys, int argc, char **argv,
+              const cli_command *cmd, const cli_begin_spec *spec, void *arg)
+{
+    *sys = NULL;
+    *av = hl_xmalloc((size_t)(argc + 1) * sizeof **av);
+    memcpy(*av, argv, (size_t)argc * sizeof **av);
+    int ac = argc;
+    int rc = cli_take_own(&ac, *av, spec->own, spec->nown, spec->found, arg, cmd);
+    if (rc < 0)
+        rc = cli_parse(o, ac, *av, spec->accept, cmd);
+    if (rc < 0)
+        rc = spec->check(arg, o, cmd);
+    if (rc < 0) {
+        rc = cli_system(sys, o, NULL); /* H alone defines the system */
+        rc = rc == CLI_OK ? -1 : rc;
+    }
+    if (rc < 0 && hl_system_ndof(*sys) > spec->max_dof) {
+        fprintf(stderr, "hamlie: error: %s handles at most %d degrees of freedom\n", cmd->name,
+                spec->max_dof);
+        rc = CLI_ERROR;
+    }
+    return rc;
+}
