@@ -144,7 +144,8 @@ int hl_tape_taylor_ode_arb(arb_ptr z, int order, slong prec, hl_tape *tape, hl_e
  * Compile the Taylor-ODE recursion at this order to machine code: one
  * straight-line function (every sum written out, every register index a
  * constant); hl_tape_taylor_ode_d at this order then runs it instead of the
- * interpreter, with the same results up to the order of additions.  Built
+ * interpreter, with the same results up to the order of additions and
+ * divisions done as multiplications by reciprocals (an ulp or two).  Built
  * in process by libgccjit where hamlie has it (no files), else, or when
  * $HL_CC names a compiler, as C source compiled by the system C compiler
  * ($HL_CC, else "cc", with -march=native: made on and for the machine that

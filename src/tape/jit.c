@@ -320,6 +320,28 @@ static void add_env_flags(gcc_jit_context *c)
     free(copy);
 }
 
+/* The vector instructions of the machine that runs the code (libgccjit
+ * does not understand -march=native).  Contraction into FMA stays off, so
+ * the results are those of plain SSE2 code; the wider registers let GCC
+ * pair the recurrences' independent products (bench/taylor_flow.c: Kepler's
+ * recursion 30% faster with AVX-512). */
+static void add_host_isa(gcc_jit_context *c)
+{
+#if defined(__x86_64__) && defined(__GNUC__)
+    __builtin_cpu_init();
+    int v3 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
+             __builtin_cpu_supports("bmi2");
+    int v4 = v3 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+             __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
+    if (v4)
+        gcc_jit_context_add_command_line_option(c, "-march=x86-64-v4");
+    else if (v3)
+        gcc_jit_context_add_command_line_option(c, "-march=x86-64-v3");
+#else
+    (void)c;
+#endif
+}
+
 /* ---- the Taylor-ODE recursion (hl_tape_native's backend) ------------------
  * The same straight-line program native.c prints as C, built as trees: every
  * sum balanced in the same way, every operation in the same order, so both
@@ -329,23 +351,48 @@ typedef struct tj {
     jit J;
     gcc_jit_rvalue *R; /* the register file, the function's parameter */
     int S;             /* stride: order + 1 */
-    gcc_jit_rvalue **term;
+    gcc_jit_rvalue **term; /* a sum's terms known a round ago */
     int n, cap;
+    gcc_jit_rvalue *fresh[2]; /* and those that read coefficient k (j = 0, k) */
+    int nfresh;
     const char *fname[16]; /* the libm functions imported so far */
     gcc_jit_function *fimp[16];
     int nf;
+    gcc_jit_lvalue **inv; /* by instruction: 1 / its divisor's coefficient 0 */
+    gcc_jit_lvalue **coef; /* the locals of the coefficients (RL) */
 } tj;
 
+/* Coefficient j of register reg: constants are read from the register
+ * file R (read only); every other coefficient is a local, so that GCC need
+ * not assume that a store through R changes what it has loaded (the
+ * recurrences are load-bound); the inputs' coefficients go back to R at the
+ * end. */
 static gcc_jit_lvalue *RL(tj *T, int reg, int j)
 {
-    gcc_jit_type *lng = gcc_jit_context_get_type(T->J.c, GCC_JIT_TYPE_LONG);
-    return gcc_jit_context_new_array_access(
-        T->J.c, NULL, T->R,
-        gcc_jit_context_new_rvalue_from_long(T->J.c, lng, (long)reg * T->S + j));
+    if (T->J.t->isconst[reg]) {
+        gcc_jit_type *lng = gcc_jit_context_get_type(T->J.c, GCC_JIT_TYPE_LONG);
+        return gcc_jit_context_new_array_access(
+            T->J.c, NULL, T->R,
+            gcc_jit_context_new_rvalue_from_long(T->J.c, lng, (long)reg * T->S + j));
+    }
+    gcc_jit_lvalue **l = &T->coef[(long)reg * T->S + j];
+    if (*l == NULL) {
+        char name[32];
+        snprintf(name, sizeof name, "c%d_%d", reg, j);
+        *l = gcc_jit_function_new_local(T->J.fun, NULL, T->J.dbl, name);
+    }
+    return *l;
 }
 static gcc_jit_rvalue *RV(tj *T, int reg, int j)
 {
     return gcc_jit_lvalue_as_rvalue(RL(T, reg, j));
+}
+/* R[reg * S + j] itself */
+static gcc_jit_lvalue *RMEM(tj *T, int reg, int j)
+{
+    gcc_jit_type *lng = gcc_jit_context_get_type(T->J.c, GCC_JIT_TYPE_LONG);
+    return gcc_jit_context_new_array_access(
+        T->J.c, NULL, T->R, gcc_jit_context_new_rvalue_from_long(T->J.c, lng, (long)reg * T->S + j));
 }
 static gcc_jit_rvalue *NUM(tj *T, double x)
 {
@@ -364,8 +411,14 @@ static gcc_jit_rvalue *NEG_(tj *T, gcc_jit_rvalue *a)
     return gcc_jit_context_new_unary_op(T->J.c, NULL, GCC_JIT_UNARY_OP_MINUS, T->J.dbl, a);
 }
 
-static void tterm(tj *T, gcc_jit_rvalue *v)
+/* A term is fresh when it reads a coefficient k computed in this round
+ * (j = 0 or j = k in a convolution); the others were known a round ago. */
+static void tterm(tj *T, gcc_jit_rvalue *v, int fresh)
 {
+    if (fresh) {
+        T->fresh[T->nfresh++] = v;
+        return;
+    }
     if (T->n == T->cap) {
         T->cap = T->cap ? 2 * T->cap : 64;
         T->term = hl_xrealloc(T->term, (size_t)T->cap * sizeof *T->term);
@@ -381,32 +434,45 @@ static gcc_jit_rvalue *tsum_range(tj *T, int lo, int hi)
     return ADD_(tsum_range(T, lo, mid), tsum_range(T, mid, hi));
 }
 
-/* the collected terms as a balanced sum (native.c's put_sum), or 0.0 */
+/* The collected terms as native.c's sum: the known terms as a balanced
+ * tree, the fresh ones added at its root, so that the chain from one
+ * order to the next goes through one multiplication and two additions
+ * rather than through the whole tree; 0.0 if there are none. */
 static gcc_jit_rvalue *tsum(tj *T)
 {
-    gcc_jit_rvalue *v = T->n == 0 ? NUM(T, 0.0) : tsum_range(T, 0, T->n);
-    T->n = 0;
-    return v;
+    gcc_jit_rvalue *v = T->n == 0 ? NULL : tsum_range(T, 0, T->n), *f = NULL;
+    for (int i = 0; i < T->nfresh; i++)
+        f = f == NULL ? T->fresh[i] : ADD_(f, T->fresh[i]);
+    if (f != NULL)
+        v = v == NULL ? f : ADD_(v, f);
+    T->n = T->nfresh = 0;
+    return v == NULL ? NUM(T, 0.0) : v;
 }
 
 static void tconv(tj *T, int x, int y, int lo, int hi, int k)
 {
     for (int j = lo; j <= hi; j++)
-        tterm(T, MUL_(RV(T, x, j), RV(T, y, k - j)));
+        tterm(T, MUL_(RV(T, x, j), RV(T, y, k - j)), j == 0 || j == k);
 }
 
 static void twconv(tj *T, int x, int y, int lo, int hi, int k, int wa, int wb)
 {
     for (int j = lo; j <= hi; j++)
-        tterm(T, MUL_(MUL_(NUM(T, wa * j + wb), RV(T, x, j)), RV(T, y, k - j)));
+        tterm(T, MUL_(MUL_(NUM(T, wa * j + wb), RV(T, x, j)), RV(T, y, k - j)), j == 0 || j == k);
+}
+
+/* the terms j = lo..k-lo of (x*x)[k], using symmetry */
+static void tsqr_from(tj *T, int x, int k, int lo)
+{
+    for (int j = lo; 2 * j < k; j++)
+        tterm(T, MUL_(MUL_(NUM(T, 2.0), RV(T, x, j)), RV(T, x, k - j)), j == 0);
+    if (k % 2 == 0 && k / 2 >= lo)
+        tterm(T, MUL_(RV(T, x, k / 2), RV(T, x, k / 2)), k == 0);
 }
 
 static void tsqr(tj *T, int x, int k)
 {
-    for (int j = 0; 2 * j < k; j++)
-        tterm(T, MUL_(MUL_(NUM(T, 2.0), RV(T, x, j)), RV(T, x, k - j)));
-    if (k % 2 == 0)
-        tterm(T, MUL_(RV(T, x, k / 2), RV(T, x, k / 2)));
+    tsqr_from(T, x, k, 0);
 }
 
 static gcc_jit_rvalue *tcall(tj *T, const char *name, gcc_jit_rvalue *x)
@@ -430,8 +496,31 @@ static void tset(tj *T, int reg, int k, gcc_jit_rvalue *v)
     gcc_jit_block_add_assignment(T->J.blk, NULL, RL(T, reg, k), v);
 }
 
-/* One instruction at coefficient k: native.c's gen_instr, as trees. */
-static void temit(tj *T, const hl_instr *in, int k)
+/* The recurrences divide every coefficient by the same coefficient 0 of a
+ * series (and by k): at k = 0 its reciprocal is kept in a local, and later
+ * coefficients multiply by it and by the constant 1/k.  A division costs
+ * 4-5 times a multiplication and lies on the chain from one order to the
+ * next; the result differs from the quotient by an ulp or two. */
+static void keep_inverse(tj *T, int i, gcc_jit_rvalue *divisor)
+{
+    char name[32];
+    snprintf(name, sizeof name, "inv%d", i);
+    T->inv[i] = gcc_jit_function_new_local(T->J.fun, NULL, T->J.dbl, name);
+    gcc_jit_block_add_assignment(T->J.blk, NULL, T->inv[i], DIV_(NUM(T, 1.0), divisor));
+}
+static gcc_jit_rvalue *INV(tj *T, int i)
+{
+    return gcc_jit_lvalue_as_rvalue(T->inv[i]);
+}
+/* v / k as v * (1/k) */
+static gcc_jit_rvalue *OVER_K(tj *T, gcc_jit_rvalue *v, int k)
+{
+    return MUL_(v, NUM(T, 1.0 / k));
+}
+
+/* One instruction (number i) at coefficient k: native.c's gen_instr, as
+ * trees. */
+static void temit(tj *T, const hl_instr *in, int i, int k)
 {
     const int d = in->d, a = in->a, b = in->b, x = in->x, op = in->op;
     const double K = k;
@@ -456,10 +545,11 @@ static void temit(tj *T, const hl_instr *in, int k)
     case HL_OP_DIV:
         if (k == 0) {
             tset(T, d, k, DIV_(RV(T, a, 0), RV(T, b, 0)));
+            keep_inverse(T, i, RV(T, b, 0));
             return;
         }
         tconv(T, b, d, 1, k, k);
-        tset(T, d, k, DIV_(SUB_(RV(T, a, k), tsum(T)), RV(T, b, 0)));
+        tset(T, d, k, MUL_(SUB_(RV(T, a, k), tsum(T)), INV(T, i)));
         return;
     case HL_OP_ADDK:
     case HL_OP_SUBK:
@@ -482,31 +572,36 @@ static void temit(tj *T, const hl_instr *in, int k)
     case HL_OP_KDIV:
         if (k == 0) {
             tset(T, d, k, DIV_(RV(T, b, 0), RV(T, a, 0)));
+            keep_inverse(T, i, RV(T, a, 0));
             return;
         }
         tconv(T, a, d, 1, k, k);
-        tset(T, d, k, DIV_(NEG_(T, tsum(T)), RV(T, a, 0)));
+        tset(T, d, k, MUL_(NEG_(T, tsum(T)), INV(T, i)));
         return;
     case HL_OP_POWK:
         if (k == 0) {
             gcc_jit_rvalue *args[2] = {RV(T, a, 0), RV(T, b, 0)};
             tset(T, d, k,
                  gcc_jit_context_new_call(T->J.c, NULL, import_lib(&T->J, HL_OP_POWK), 2, args));
+            keep_inverse(T, i, RV(T, a, 0));
             return;
         }
         for (int m = 1; m <= k; m++)
-            tterm(T, MUL_(MUL_(SUB_(MUL_(ADD_(RV(T, b, 0), NUM(T, 1.0)), NUM(T, m)), NUM(T, K)),
-                               RV(T, a, m)),
-                          RV(T, d, k - m)));
-        tset(T, d, k, DIV_(tsum(T), MUL_(NUM(T, K), RV(T, a, 0))));
+            tterm(T,
+                  MUL_(MUL_(SUB_(MUL_(ADD_(RV(T, b, 0), NUM(T, 1.0)), NUM(T, m)), NUM(T, K)),
+                            RV(T, a, m)),
+                       RV(T, d, k - m)),
+                  m == k);
+        tset(T, d, k, OVER_K(T, MUL_(tsum(T), INV(T, i)), k));
         return;
     case HL_OP_SQRT:
         if (k == 0) {
             tset(T, d, k, tcall(T, "sqrt", RV(T, a, 0)));
+            keep_inverse(T, i, MUL_(NUM(T, 2.0), RV(T, d, 0)));
             return;
         }
-        tconv(T, d, d, 1, k - 1, k);
-        tset(T, d, k, DIV_(SUB_(RV(T, a, k), tsum(T)), MUL_(NUM(T, 2.0), RV(T, d, 0))));
+        tsqr_from(T, d, k, 1);
+        tset(T, d, k, MUL_(SUB_(RV(T, a, k), tsum(T)), INV(T, i)));
         return;
     case HL_OP_EXP:
         if (k == 0) {
@@ -514,16 +609,17 @@ static void temit(tj *T, const hl_instr *in, int k)
             return;
         }
         twconv(T, a, d, 1, k, k, 1, 0);
-        tset(T, d, k, DIV_(tsum(T), NUM(T, K)));
+        tset(T, d, k, OVER_K(T, tsum(T), k));
         return;
     case HL_OP_LOG:
         if (k == 0) {
             tset(T, d, k, tcall(T, "log", RV(T, a, 0)));
+            keep_inverse(T, i, RV(T, a, 0));
             return;
         }
         twconv(T, a, d, 1, k - 1, k, -1, k);
         tset(T, d, k,
-             DIV_(SUB_(MUL_(NUM(T, K), RV(T, a, k)), tsum(T)), MUL_(NUM(T, K), RV(T, a, 0))));
+             OVER_K(T, MUL_(SUB_(MUL_(NUM(T, K), RV(T, a, k)), tsum(T)), INV(T, i)), k));
         return;
     case HL_OP_SINCOS:
     case HL_OP_SINHCOSH: {
@@ -534,10 +630,10 @@ static void temit(tj *T, const hl_instr *in, int k)
             return;
         }
         twconv(T, a, x, 1, k, k, 1, 0);
-        tset(T, d, k, DIV_(tsum(T), NUM(T, K)));
+        tset(T, d, k, OVER_K(T, tsum(T), k));
         twconv(T, a, d, 1, k, k, 1, 0);
         gcc_jit_rvalue *s = tsum(T);
-        tset(T, x, k, DIV_(trig ? NEG_(T, s) : s, NUM(T, K)));
+        tset(T, x, k, OVER_K(T, trig ? NEG_(T, s) : s, k));
         return;
     }
     case HL_OP_TAN:
@@ -547,7 +643,7 @@ static void temit(tj *T, const hl_instr *in, int k)
             tset(T, d, 0, tcall(T, tn ? "tan" : "tanh", RV(T, a, 0)));
         } else {
             twconv(T, a, x, 1, k, k, 1, 0);
-            gcc_jit_rvalue *q = DIV_(tsum(T), NUM(T, K));
+            gcc_jit_rvalue *q = OVER_K(T, tsum(T), k);
             tset(T, d, k, tn ? ADD_(RV(T, a, k), q) : SUB_(RV(T, a, k), q));
         }
         tsqr(T, d, k);
@@ -569,7 +665,7 @@ static void temit(tj *T, const hl_instr *in, int k)
             gcc_jit_rvalue *s1 = tsum(T);
             tconv(T, x, x, 1, k - 1, k);
             gcc_jit_rvalue *s2 = tsum(T);
-            tset(T, x, k, DIV_(SUB_(NEG_(T, s1), s2), MUL_(NUM(T, 2.0), RV(T, x, 0))));
+            tset(T, x, k, MUL_(MUL_(SUB_(NEG_(T, s1), s2), INV(T, i)), NUM(T, 0.5)));
         }
         if (k == 0) {
             tset(T, d, 0,
@@ -578,12 +674,15 @@ static void temit(tj *T, const hl_instr *in, int k)
                        : op == HL_OP_ASIN ? "asin"
                                           : "acos",
                        RV(T, a, 0)));
+            keep_inverse(T, i, RV(T, x, 0));
             return;
         }
         twconv(T, x, d, 1, k - 1, k, -1, k);
         tset(T, d, k,
-             DIV_(SUB_(MUL_(NUM(T, op == HL_OP_ACOS ? -K : K), RV(T, a, k)), tsum(T)),
-                  MUL_(NUM(T, K), RV(T, x, 0))));
+             OVER_K(T,
+                    MUL_(SUB_(MUL_(NUM(T, op == HL_OP_ACOS ? -K : K), RV(T, a, k)), tsum(T)),
+                         INV(T, i)),
+                    k));
         return;
     }
 }
@@ -600,6 +699,7 @@ int hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tape *t, 
     gcc_jit_context_set_bool_option(c, GCC_JIT_BOOL_OPTION_DEBUGINFO, 0);
     gcc_jit_context_set_bool_print_errors_to_stderr(c, 0);
     gcc_jit_context_add_command_line_option(c, "-ffp-contract=off");
+    add_host_isa(c);
     add_env_flags(c);
     tj Tv = {.J = {.c = c, .t = t}, .S = order + 1}, *T = &Tv;
     T->J.dbl = gcc_jit_context_get_type(c, GCC_JIT_TYPE_DOUBLE);
@@ -611,14 +711,23 @@ int hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tape *t, 
                                             "hl_native", 1, &prm, 0);
     T->R = gcc_jit_param_as_rvalue(prm);
     T->J.blk = gcc_jit_function_new_block(T->J.fun, "body");
+    T->inv = hl_xcalloc((size_t)t->ncode + 1, sizeof *T->inv);
+    T->coef = hl_xcalloc((size_t)t->nregs * (size_t)T->S, sizeof *T->coef);
+    for (int i = 0; i < t->nin; i++)
+        tset(T, i, 0, gcc_jit_lvalue_as_rvalue(RMEM(T, i, 0)));
     for (int k = 0; k < order; k++) {
         for (int i = 0; i < t->ncode; i++)
-            temit(T, &t->code[i], k);
+            temit(T, &t->code[i], i, k);
         for (int i = 0; i < t->nin; i++)
             tset(T, i, k + 1, DIV_(RV(T, t->outreg[i], k), NUM(T, k + 1)));
     }
+    for (int i = 0; i < t->nin; i++)
+        for (int k = 1; k <= order; k++)
+            gcc_jit_block_add_assignment(T->J.blk, NULL, RMEM(T, i, k), RV(T, i, k));
     gcc_jit_block_end_with_void_return(T->J.blk, NULL);
     free(T->term);
+    free(T->inv);
+    free(T->coef);
     gcc_jit_result *res = gcc_jit_context_compile(c);
     void *f = res ? gcc_jit_result_get_code(res, "hl_native") : NULL;
     int status = HL_OK;

@@ -37,21 +37,26 @@ extern char **environ;
 
 /* ---- sums of terms, printed as balanced trees ------------------------------ */
 
+/* A sum's terms: those known a round ago first (t[0..n-1]), and the fresh
+ * ones, which read a coefficient k computed in this round (j = 0 or j = k
+ * in a convolution), apart (f[0..nf-1]). */
 typedef struct terms {
     char (*t)[128];
     int n, cap;
+    char f[2][128];
+    int nf;
 } terms;
 
-static void term(terms *ts, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void term(terms *ts, const char *fmt, ...)
+static void term(terms *ts, int fresh, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static void term(terms *ts, int fresh, const char *fmt, ...)
 {
-    if (ts->n == ts->cap) {
+    if (!fresh && ts->n == ts->cap) {
         ts->cap = ts->cap ? 2 * ts->cap : 64;
         ts->t = hl_xrealloc(ts->t, (size_t)ts->cap * sizeof *ts->t);
     }
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(ts->t[ts->n++], sizeof ts->t[0], fmt, ap);
+    vsnprintf(fresh ? ts->f[ts->nf++] : ts->t[ts->n++], sizeof ts->t[0], fmt, ap);
     va_end(ap);
 }
 
@@ -69,14 +74,27 @@ static void put_sum(hl_buf *b, const terms *ts, int lo, int hi)
     hl_buf_putc(b, ')');
 }
 
-/* "(sum)" of the collected terms, or "0.0"; resets the list */
+/* "(sum)" of the collected terms, or "0.0"; resets the list.  The known
+ * terms form a balanced tree and the fresh ones are added at its root, so
+ * that the chain from one order to the next goes through one
+ * multiplication and two additions rather than through the whole tree. */
 static void sum(hl_buf *b, terms *ts)
 {
-    if (ts->n == 0)
+    if (ts->n == 0 && ts->nf == 0)
         hl_buf_puts(b, "0.0");
-    else
+    if (ts->n > 0 && ts->nf > 0)
+        hl_buf_putc(b, '(');
+    if (ts->n > 0)
         put_sum(b, ts, 0, ts->n);
-    ts->n = 0;
+    if (ts->n > 0 && ts->nf > 0)
+        hl_buf_puts(b, " + ");
+    if (ts->nf == 2)
+        hl_buf_printf(b, "(%s + %s)", ts->f[0], ts->f[1]);
+    else if (ts->nf == 1)
+        hl_buf_puts(b, ts->f[0]);
+    if (ts->n > 0 && ts->nf > 0)
+        hl_buf_putc(b, ')');
+    ts->n = ts->nf = 0;
 }
 
 /* ---- one instruction at coefficient k ------------------------------------------ */
@@ -87,29 +105,45 @@ static void sum(hl_buf *b, terms *ts)
 static void conv(terms *ts, int x, int y, int lo, int hi, int k, int S)
 {
     for (int j = lo; j <= hi; j++)
-        term(ts, "R[%ld]*R[%ld]", R(x, j), R(y, k - j));
+        term(ts, j == 0 || j == k, "R[%ld]*R[%ld]", R(x, j), R(y, k - j));
 }
 
 /* terms (wa*j + wb) x[j] y[k-j], j = lo..hi */
 static void wconv(terms *ts, int x, int y, int lo, int hi, int k, int wa, int wb, int S)
 {
     for (int j = lo; j <= hi; j++)
-        term(ts, "%d.0*R[%ld]*R[%ld]", wa * j + wb, R(x, j), R(y, k - j));
+        term(ts, j == 0 || j == k, "%d.0*R[%ld]*R[%ld]", wa * j + wb, R(x, j), R(y, k - j));
 }
 
-/* (x*x)[k] with symmetry */
+/* the terms j = lo..k-lo of (x*x)[k], using symmetry */
+static void sqr_terms_from(terms *ts, int x, int k, int lo, int S)
+{
+    for (int j = lo; 2 * j < k; j++)
+        term(ts, j == 0, "2.0*R[%ld]*R[%ld]", R(x, j), R(x, k - j));
+    if (k % 2 == 0 && k / 2 >= lo)
+        term(ts, k == 0, "R[%ld]*R[%ld]", R(x, k / 2), R(x, k / 2));
+}
+
 static void sqr_terms(terms *ts, int x, int k, int S)
 {
-    for (int j = 0; 2 * j < k; j++)
-        term(ts, "2.0*R[%ld]*R[%ld]", R(x, j), R(x, k - j));
-    if (k % 2 == 0)
-        term(ts, "R[%ld]*R[%ld]", R(x, k / 2), R(x, k / 2));
+    sqr_terms_from(ts, x, k, 0, S);
 }
 
-static void gen_instr(hl_buf *b, terms *ts, const hl_instr *in, int k, int S)
+/* As jit.c: the reciprocal of a divisor's coefficient 0 is kept in a
+ * local (inv<i>, declared at k = 0 after the line that sets the divisor),
+ * and later coefficients multiply by it and by 1/k. */
+static void keep_inverse(hl_buf *b, int i, const char *fmt, long reg)
+{
+    hl_buf_printf(b, "    const double inv%d = 1.0 / (", i);
+    hl_buf_printf(b, fmt, reg);
+    hl_buf_puts(b, ");\n");
+}
+
+static void gen_instr(hl_buf *b, terms *ts, const hl_instr *in, int i, int k, int S)
 {
     const int d = in->d, a = in->a, bb = in->b, x = in->x;
     const int op = in->op;
+    const double rk = k > 0 ? 1.0 / k : 0; /* printed %.17g: reads back exactly */
     hl_buf_printf(b, "    R[%ld] = ", R(d, k));
     switch (op) {
     case HL_OP_NEG: hl_buf_printf(b, "-R[%ld];\n", R(a, k)); return;
@@ -120,12 +154,13 @@ static void gen_instr(hl_buf *b, terms *ts, const hl_instr *in, int k, int S)
     case HL_OP_DIV:
         if (k == 0) {
             hl_buf_printf(b, "R[%ld] / R[%ld];\n", R(a, 0), R(bb, 0));
+            keep_inverse(b, i, "R[%ld]", R(bb, 0));
             return;
         }
         hl_buf_printf(b, "(R[%ld] - ", R(a, k));
         conv(ts, bb, d, 1, k, k, S);
         sum(b, ts);
-        hl_buf_printf(b, ") / R[%ld];\n", R(bb, 0));
+        hl_buf_printf(b, ") * inv%d;\n", i);
         return;
     case HL_OP_ADDK:
     case HL_OP_SUBK:
@@ -142,33 +177,37 @@ static void gen_instr(hl_buf *b, terms *ts, const hl_instr *in, int k, int S)
     case HL_OP_KDIV:
         if (k == 0) {
             hl_buf_printf(b, "R[%ld] / R[%ld];\n", R(bb, 0), R(a, 0));
+            keep_inverse(b, i, "R[%ld]", R(a, 0));
             return;
         }
         hl_buf_puts(b, "-");
         conv(ts, a, d, 1, k, k, S);
         sum(b, ts);
-        hl_buf_printf(b, " / R[%ld];\n", R(a, 0));
+        hl_buf_printf(b, " * inv%d;\n", i);
         return;
     case HL_OP_POWK:
         if (k == 0) {
             hl_buf_printf(b, "pow(R[%ld], R[%ld]);\n", R(a, 0), R(bb, 0));
+            keep_inverse(b, i, "R[%ld]", R(a, 0));
             return;
         }
         /* sum_{m=1..k} ((c+1) m - k) a[m] d[k-m] / (k a[0]) */
         for (int m = 1; m <= k; m++)
-            term(ts, "((R[%ld] + 1.0) * %d.0 - %d.0)*R[%ld]*R[%ld]", R(bb, 0), m, k, R(a, m), R(d, k - m));
+            term(ts, m == k, "((R[%ld] + 1.0) * %d.0 - %d.0)*R[%ld]*R[%ld]", R(bb, 0), m, k, R(a, m),
+                 R(d, k - m));
         sum(b, ts);
-        hl_buf_printf(b, " / (%d.0 * R[%ld]);\n", k, R(a, 0));
+        hl_buf_printf(b, " * inv%d * %.17g;\n", i, rk);
         return;
     case HL_OP_SQRT:
         if (k == 0) {
             hl_buf_printf(b, "sqrt(R[%ld]);\n", R(a, 0));
+            keep_inverse(b, i, "2.0 * R[%ld]", R(d, 0));
             return;
         }
         hl_buf_printf(b, "(R[%ld] - ", R(a, k));
-        conv(ts, d, d, 1, k - 1, k, S);
+        sqr_terms_from(ts, d, k, 1, S);
         sum(b, ts);
-        hl_buf_printf(b, ") / (2.0 * R[%ld]);\n", R(d, 0));
+        hl_buf_printf(b, ") * inv%d;\n", i);
         return;
     case HL_OP_EXP:
         if (k == 0) {
@@ -177,17 +216,18 @@ static void gen_instr(hl_buf *b, terms *ts, const hl_instr *in, int k, int S)
         }
         wconv(ts, a, d, 1, k, k, 1, 0, S);
         sum(b, ts);
-        hl_buf_printf(b, " / %d.0;\n", k);
+        hl_buf_printf(b, " * %.17g;\n", rk);
         return;
     case HL_OP_LOG:
         if (k == 0) {
             hl_buf_printf(b, "log(R[%ld]);\n", R(a, 0));
+            keep_inverse(b, i, "R[%ld]", R(a, 0));
             return;
         }
         hl_buf_printf(b, "(%d.0 * R[%ld] - ", k, R(a, k));
         wconv(ts, a, d, 1, k - 1, k, -1, k, S);
         sum(b, ts);
-        hl_buf_printf(b, ") / (%d.0 * R[%ld]);\n", k, R(a, 0));
+        hl_buf_printf(b, ") * inv%d * %.17g;\n", i, rk);
         return;
     case HL_OP_SINCOS:
     case HL_OP_SINHCOSH: {
@@ -199,10 +239,10 @@ static void gen_instr(hl_buf *b, terms *ts, const hl_instr *in, int k, int S)
         }
         wconv(ts, a, x, 1, k, k, 1, 0, S);
         sum(b, ts);
-        hl_buf_printf(b, " / %d.0;\n    R[%ld] = %s", k, R(x, k), trig ? "-" : "");
+        hl_buf_printf(b, " * %.17g;\n    R[%ld] = %s", rk, R(x, k), trig ? "-" : "");
         wconv(ts, a, d, 1, k, k, 1, 0, S);
         sum(b, ts);
-        hl_buf_printf(b, " / %d.0;\n", k);
+        hl_buf_printf(b, " * %.17g;\n", rk);
         return;
     }
     case HL_OP_TAN:
@@ -214,7 +254,7 @@ static void gen_instr(hl_buf *b, terms *ts, const hl_instr *in, int k, int S)
             hl_buf_printf(b, "R[%ld] %s ", R(a, k), t ? "+" : "-");
             wconv(ts, a, x, 1, k, k, 1, 0, S);
             sum(b, ts);
-            hl_buf_printf(b, " / %d.0;\n", k);
+            hl_buf_printf(b, " * %.17g;\n", rk);
         }
         hl_buf_printf(b, "    R[%ld] = ", R(x, k));
         sqr_terms(ts, d, k, S);
@@ -240,18 +280,19 @@ static void gen_instr(hl_buf *b, terms *ts, const hl_instr *in, int k, int S)
             hl_buf_puts(b, " - ");
             conv(ts, x, x, 1, k - 1, k, S);
             sum(b, ts);
-            hl_buf_printf(b, ") / (2.0 * R[%ld]);\n", R(x, 0));
+            hl_buf_printf(b, ") * inv%d * 0.5;\n", i);
         }
         hl_buf_printf(b, "    R[%ld] = ", R(d, k));
         if (k == 0) {
             hl_buf_printf(b, "%s(R[%ld]);\n", op == HL_OP_ATAN ? "atan" : op == HL_OP_ASIN ? "asin" : "acos",
                           R(a, 0));
+            keep_inverse(b, i, "R[%ld]", R(x, 0));
             return;
         }
         hl_buf_printf(b, "(%s%d.0 * R[%ld] - ", op == HL_OP_ACOS ? "-" : "", k, R(a, k));
         wconv(ts, x, d, 1, k - 1, k, -1, k, S);
         sum(b, ts);
-        hl_buf_printf(b, ") / (%d.0 * R[%ld]);\n", k, R(x, 0));
+        hl_buf_printf(b, ") * inv%d * %.17g;\n", i, rk);
         return;
     }
     sum(b, ts);
@@ -271,7 +312,7 @@ static char *gen_source(const hl_tape *t, int order)
     for (int k = 0; k < order; k++) {
         hl_buf_printf(&b, "    /* coefficient %d */\n", k);
         for (int i = 0; i < t->ncode; i++)
-            gen_instr(&b, &ts, &t->code[i], k, S);
+            gen_instr(&b, &ts, &t->code[i], i, k, S);
         for (int i = 0; i < t->nin; i++)
             hl_buf_printf(&b, "    R[%ld] = R[%ld] / %d.0;\n", R(i, k + 1), R(t->outreg[i], k), k + 1);
     }
