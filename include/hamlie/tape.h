@@ -200,6 +200,18 @@ long hl_tape_jit_breakeven(const hl_tape *tape);
  * speed of hand-written C); else the interpreter, with the same results. */
 long hl_tape_iterate(double *in, long n, hl_tape *tape);
 
+/* The same for a tape with nout == nin >= 2 whose last output w is watched
+ * rather than fed back: outputs 0..nout-2 replace in[0..nout-2], in[nout-1]
+ * is held fixed (a step size), and each step taken raises *dev to
+ * |w - w0| if that is larger, w computed at the state the step starts from
+ * (e.g. the outputs are a scheme's step and H: the step and the energy of
+ * the state it leaves share their subexpressions, and a run checks
+ * max |H - H0| without a second tape).  Stops before the first step whose
+ * outputs (w included) are not all finite; returns the steps done, -1 if
+ * the tape is not of that shape.  After hl_tape_jit the loop is machine
+ * code, else the interpreter with the same results. */
+long hl_tape_iterate_watch(double *in, long n, double w0, double *dev, hl_tape *tape);
+
 #ifdef __cplusplus
 }
 #endif

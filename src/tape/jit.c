@@ -16,7 +16,7 @@
  * -march is given, so no FMA could be formed anyway.  sqrt is GCC's builtin
  * (sqrtsd, correctly rounded like libm's).
  *
- * Three functions are built here: hl_jit_eval (hl_tape_eval_d), hl_jit_iter
+ * Four functions are built here: hl_jit_eval (hl_tape_eval_d), hl_jit_iter
  * (hl_tape_iterate: the map iterated in one loop, so that a fixed-step run
  * pays no call and no copy per step), and, for hl_tape_native in native.c,
  * the Taylor-ODE recursion at one order.  Without libgccjit at build time
@@ -53,9 +53,26 @@ typedef struct jit {
     gcc_jit_function *fun;
     gcc_jit_lvalue **loc; /* one local per non-constant register */
     gcc_jit_function *lib[HL_OP_COUNT];
-    gcc_jit_function *cosh, *sqrt;
+    gcc_jit_function *cosh, *sqrt, *sin, *cos;
     const hl_tape *t;
+    unsigned char *read; /* by register: read by an instruction or an output */
 } jit;
+
+/* Which registers the body and the outputs read. */
+static unsigned char *registers_read(const hl_tape *t)
+{
+    unsigned char *r = hl_xcalloc((size_t)t->nregs + 1, 1);
+    for (int k = 0; k < t->ncode; k++) {
+        const hl_instr *i = &t->code[k];
+        if (i->a >= 0)
+            r[i->a] = 1;
+        if (i->b >= 0)
+            r[i->b] = 1;
+    }
+    for (int j = 0; j < t->nout; j++)
+        r[t->outreg[j]] = 1;
+    return r;
+}
 
 static gcc_jit_function *import1(jit *J, const char *name)
 {
@@ -151,6 +168,16 @@ static void emit(jit *J, const hl_instr *i)
         v = call1(J, J->sqrt, i->a);
         break;
     case HL_OP_SINCOS: {
+        /* sin or cos alone when the other is not read (the compiler makes
+         * every sin a SINCOS, for Taylor mode): glibc's sincos computes
+         * each as sin and cos do, so the bits are the same */
+        if (!J->read[i->x] || !J->read[i->d]) {
+            int want_sin = J->read[i->d];
+            if (J->sin == NULL)
+                J->sin = import1(J, "sin"), J->cos = import1(J, "cos");
+            assign(J, want_sin ? i->d : i->x, call1(J, want_sin ? J->sin : J->cos, i->a));
+            return;
+        }
         gcc_jit_rvalue *args[3] = {val(J, i->a), gcc_jit_lvalue_get_address(J->loc[i->d], NULL),
                                    gcc_jit_lvalue_get_address(J->loc[i->x], NULL)};
         gcc_jit_block_add_eval(J->blk, NULL,
@@ -181,6 +208,7 @@ static void emit(jit *J, const hl_instr *i)
 
 typedef void (*jit_fn)(const double *in, double *out);
 typedef long (*jit_iter_fn)(double *z, long n);
+typedef long (*jit_watch_fn)(double *z, long n, double w0, double *dev);
 
 /* Fresh locals of J->fun for the registers that are not constants. */
 static void new_locals(jit *J, const char *prefix)
@@ -228,18 +256,27 @@ static void build_eval(jit *J)
 
 /* long hl_jit_iter(double *z, long n): hl_tape_iterate as one loop, the
  * state in machine registers between steps.  A step is kept only if its
- * outputs are all finite: sum (y - y) is 0 exactly then, NaN otherwise. */
-static void build_iter(jit *J)
+ * outputs are all finite: sum (y - y) is 0 exactly then, NaN otherwise.
+ * With watch, long hl_jit_watch(double *z, long n, double w0, double *dev)
+ * for hl_tape_iterate_watch: the last output is not fed back but
+ * *dev = max(*dev, |w - w0|) is kept over the steps taken. */
+static void build_loop(jit *J, int watch)
 {
     const hl_tape *t = J->t;
     gcc_jit_context *c = J->c;
     gcc_jit_type *lng = gcc_jit_context_get_type(c, GCC_JIT_TYPE_LONG);
-    gcc_jit_param *prm[2] = {gcc_jit_context_new_param(c, NULL, J->dblp, "z"),
-                             gcc_jit_context_new_param(c, NULL, lng, "n")};
-    J->fun = gcc_jit_context_new_function(c, NULL, GCC_JIT_FUNCTION_EXPORTED, lng, "hl_jit_iter", 2,
+    gcc_jit_param *prm[4] = {gcc_jit_context_new_param(c, NULL, J->dblp, "z"),
+                             gcc_jit_context_new_param(c, NULL, lng, "n"),
+                             gcc_jit_context_new_param(c, NULL, J->dbl, "w0"),
+                             gcc_jit_context_new_param(c, NULL, J->dblp, "dev")};
+    J->fun = gcc_jit_context_new_function(c, NULL, GCC_JIT_FUNCTION_EXPORTED, lng,
+                                          watch ? "hl_jit_watch" : "hl_jit_iter", watch ? 4 : 2,
                                           prm, 0);
     new_locals(J, "s");
+    const int nmap = watch ? t->nout - 1 : t->nout;
     gcc_jit_lvalue *k = gcc_jit_function_new_local(J->fun, NULL, lng, "k");
+    gcc_jit_lvalue *m = gcc_jit_function_new_local(J->fun, NULL, J->dbl, "m");
+    gcc_jit_lvalue *e = gcc_jit_function_new_local(J->fun, NULL, J->dbl, "e");
     gcc_jit_lvalue **y = hl_xmalloc((size_t)t->nout * sizeof *y);
     for (int j = 0; j < t->nout; j++) {
         char name[32];
@@ -256,6 +293,10 @@ static void build_iter(jit *J)
     for (int r = 0; r < t->nin; r++)
         assign(J, r, gcc_jit_lvalue_as_rvalue(elem(J, z, r)));
     gcc_jit_block_add_assignment(entry, NULL, k, gcc_jit_context_zero(c, lng));
+    if (watch)
+        gcc_jit_block_add_assignment(entry, NULL, m,
+                                     gcc_jit_lvalue_as_rvalue(gcc_jit_rvalue_dereference(
+                                         gcc_jit_param_as_rvalue(prm[3]), NULL)));
     gcc_jit_block_end_with_jump(entry, NULL, cond);
     gcc_jit_block_end_with_conditional(
         cond, NULL,
@@ -278,16 +319,49 @@ static void build_iter(jit *J)
         gcc_jit_context_new_comparison(c, NULL, GCC_JIT_COMPARISON_EQ, acc,
                                        gcc_jit_context_zero(c, J->dbl)),
         latch, done);
-    for (int j = 0; j < t->nout; j++)
-        gcc_jit_block_add_assignment(latch, NULL, J->loc[j], gcc_jit_lvalue_as_rvalue(y[j]));
-    gcc_jit_block_add_assignment_op(latch, NULL, k, GCC_JIT_BINARY_OP_PLUS,
+    gcc_jit_block *next = latch;
+    if (watch) { /* e = |w - w0|; m = e > m ? e : m */
+        gcc_jit_rvalue *w = gcc_jit_lvalue_as_rvalue(y[t->nout - 1]);
+        gcc_jit_rvalue *dw = gcc_jit_context_new_binary_op(c, NULL, GCC_JIT_BINARY_OP_MINUS, J->dbl,
+                                                           w, gcc_jit_param_as_rvalue(prm[2]));
+        gcc_jit_function *fabs_ = gcc_jit_context_get_builtin_function(c, "__builtin_fabs");
+        gcc_jit_block_add_assignment(latch, NULL, e,
+                                     gcc_jit_context_new_call(c, NULL, fabs_, 1, &dw));
+        gcc_jit_block *raise = gcc_jit_function_new_block(J->fun, "raise");
+        next = gcc_jit_function_new_block(J->fun, "keep");
+        gcc_jit_block_end_with_conditional(
+            latch, NULL,
+            gcc_jit_context_new_comparison(c, NULL, GCC_JIT_COMPARISON_GT,
+                                           gcc_jit_lvalue_as_rvalue(e),
+                                           gcc_jit_lvalue_as_rvalue(m)),
+            raise, next);
+        gcc_jit_block_add_assignment(raise, NULL, m, gcc_jit_lvalue_as_rvalue(e));
+        gcc_jit_block_end_with_jump(raise, NULL, next);
+    }
+    for (int j = 0; j < nmap; j++)
+        gcc_jit_block_add_assignment(next, NULL, J->loc[j], gcc_jit_lvalue_as_rvalue(y[j]));
+    gcc_jit_block_add_assignment_op(next, NULL, k, GCC_JIT_BINARY_OP_PLUS,
                                     gcc_jit_context_one(c, lng));
-    gcc_jit_block_end_with_jump(latch, NULL, cond);
-    for (int j = 0; j < t->nout; j++)
+    gcc_jit_block_end_with_jump(next, NULL, cond);
+    for (int j = 0; j < nmap; j++)
         gcc_jit_block_add_assignment(done, NULL, elem(J, z, j),
                                      gcc_jit_lvalue_as_rvalue(J->loc[j]));
+    if (watch)
+        gcc_jit_block_add_assignment(
+            done, NULL, gcc_jit_rvalue_dereference(gcc_jit_param_as_rvalue(prm[3]), NULL),
+            gcc_jit_lvalue_as_rvalue(m));
     gcc_jit_block_end_with_return(done, NULL, gcc_jit_lvalue_as_rvalue(k));
     free(y);
+}
+
+/* The shapes hl_tape_iterate and hl_tape_iterate_watch accept. */
+static int iter_shape(const hl_tape *t)
+{
+    return t->nout >= 1 && t->nout <= t->nin;
+}
+static int watch_shape(const hl_tape *t)
+{
+    return t->nout >= 2 && t->nout == t->nin;
 }
 
 /* Build the functions and compile them; NULL result on failure (message in
@@ -299,10 +373,14 @@ static gcc_jit_result *build(gcc_jit_context *c, const hl_tape *t)
     J.dblp = gcc_jit_type_get_pointer(J.dbl);
     J.sqrt = gcc_jit_context_get_builtin_function(c, "__builtin_sqrt");
     J.loc = hl_xcalloc((size_t)t->nregs + 1, sizeof *J.loc);
+    J.read = registers_read(t);
     build_eval(&J);
-    if (t->nout >= 1 && t->nout <= t->nin)
-        build_iter(&J);
+    if (iter_shape(t))
+        build_loop(&J, 0);
+    if (watch_shape(t))
+        build_loop(&J, 1);
     free(J.loc);
+    free(J.read);
     return gcc_jit_context_compile(c);
 }
 
@@ -766,10 +844,13 @@ int hl_tape_jit(hl_tape *t, hl_error *err)
     gcc_jit_result *res = build(c, t);
     jit_fn fn = NULL;
     jit_iter_fn iter = NULL;
+    jit_watch_fn watch = NULL;
     if (res != NULL) {
         *(void **)&fn = gcc_jit_result_get_code(res, "hl_jit_eval");
-        if (t->nout >= 1 && t->nout <= t->nin)
+        if (iter_shape(t))
             *(void **)&iter = gcc_jit_result_get_code(res, "hl_jit_iter");
+        if (watch_shape(t))
+            *(void **)&watch = gcc_jit_result_get_code(res, "hl_jit_watch");
     }
     int status = HL_OK;
     if (fn == NULL) {
@@ -787,6 +868,7 @@ int hl_tape_jit(hl_tape *t, hl_error *err)
     t->jit_result = res;
     t->jit_fn = fn;
     t->jit_iter = iter;
+    t->jit_watch = watch;
     return HL_OK;
 }
 
@@ -797,6 +879,7 @@ void hl_tape_jit_clear(hl_tape *t)
     t->jit_result = NULL;
     t->jit_fn = NULL;
     t->jit_iter = NULL;
+    t->jit_watch = NULL;
 }
 
 int hl_tape_jit_available(void)
@@ -887,6 +970,30 @@ long hl_tape_iterate(double *in, long n, hl_tape *t)
         if (!all_finite(y, t->nout))
             break;
         memcpy(in, y, (size_t)t->nout * sizeof *y);
+    }
+    free(y);
+    return k;
+}
+
+long hl_tape_iterate_watch(double *in, long n, double w0, double *dev, hl_tape *t)
+{
+    if (t->nout < 2 || t->nout != t->nin)
+        return -1;
+    if (n <= 0)
+        return 0;
+    if (t->jit_watch != NULL)
+        return t->jit_watch(in, n, w0, dev);
+    const int nmap = t->nout - 1;
+    double *y = hl_xmalloc((size_t)t->nout * sizeof *y);
+    long k = 0;
+    for (; k < n; k++) {
+        hl_tape_eval_d(y, in, t);
+        if (!all_finite(y, t->nout))
+            break;
+        double e = fabs(y[nmap] - w0);
+        if (e > *dev)
+            *dev = e;
+        memcpy(in, y, (size_t)nmap * sizeof *y);
     }
     free(y);
     return k;

@@ -52,6 +52,7 @@ struct hl_tape {
     void *jit_result;       /* hl_tape_jit: the compiled evaluation (a gcc_jit_result) */
     void (*jit_fn)(const double *in, double *out); /* and its entry; eval_d calls it */
     long (*jit_iter)(double *z, long n); /* hl_tape_iterate's loop, if nout <= nin */
+    long (*jit_watch)(double *z, long n, double w0, double *dev); /* hl_tape_iterate_watch's */
     void *native_jit;       /* hl_tape_native through libgccjit: the gcc_jit_result */
     double *tinv;           /* tinv[k] = 1/k for k = 1..order+1 (divisions are slow) */
     int ts;                 /* its stride (order + 1), 0 = not laid out */

@@ -189,6 +189,41 @@ static void test_iterate(void)
     hl_pool_free(P);
 }
 
+/* hl_tape_iterate_watch on (x, c) -> (c x, x - 1/2) with w0 = 1/2 watched:
+ * w - w0 = x - 1 at the state each step leaves, so from x = 1, c = 2 after
+ * n steps dev = 2^(n-1) - 1; the overflow stops it after 1023 steps.  A
+ * tape of another shape is refused.  Interpreter and compiled agree. */
+static void test_iterate_watch(void)
+{
+    hl_pool *P = hl_pool_new();
+    hl_error err;
+    hl_tape *t = NULL;
+    const char *xc[2] = {"x", "c"};
+    const hl_expr *x = hl_sym(P, "x");
+    const hl_expr *e[2] = {hl_mul(P, x, hl_sym(P, "c")), hl_sub(P, x, hl_num_frac(P, 1, 2))};
+    CHECK(hl_tape_new(&t, e, 2, xc, 2, &err) == HL_OK);
+    for (int pass = 0; pass < 2; pass++) {
+        double z[2] = {1, 2}, dev = 0;
+        CHECK(hl_tape_iterate_watch(z, 10, 0.5, &dev, t) == 10 && z[0] == 1024 && z[1] == 2);
+        CHECK_MSG(dev == 511, "pass %d: dev %g", pass, dev);
+        z[0] = 1, dev = 0;
+        CHECK(hl_tape_iterate_watch(z, 5000, 0.5, &dev, t) == 1023 && z[0] == ldexp(1, 1023));
+        CHECK(dev == ldexp(1, 1022) - 1);
+        dev = 7;
+        CHECK(hl_tape_iterate_watch(z, 0, 0.5, &dev, t) == 0 && dev == 7);
+        z[0] = -3, z[1] = 0.5, dev = 0;
+        CHECK(hl_tape_iterate_watch(z, 2, 0.5, &dev, t) == 2 && z[0] == -0.75 && dev == 4);
+        if (pass == 0)
+            CHECK(hl_tape_jit(t, &err) == HL_OK);
+    }
+    hl_tape_free(t);
+    CHECK(hl_tape_new(&t, e, 1, xc, 2, &err) == HL_OK); /* 1 output: no watched one */
+    double z1[2] = {1, 2}, dev = 0;
+    CHECK(hl_tape_iterate_watch(z1, 1, 0, &dev, t) == -1);
+    hl_tape_free(t);
+    hl_pool_free(P);
+}
+
 /* The policy's estimate: 1e7/n + 4e4 evaluations for n instructions,
  * decreasing with length; no instructions, never worth it. */
 static void test_breakeven(void)
@@ -256,6 +291,7 @@ int main(void)
         test_random();
         test_constants();
         test_iterate();
+        test_iterate_watch();
         test_breakeven();
         test_failure();
     }
