@@ -216,6 +216,18 @@ int hl_scheme_stepper_jit(hl_scheme_stepper *st, long nsteps);
 /* Newton iterations taken by the last step (0 for an explicit scheme). */
 int hl_scheme_stepper_iterations(const hl_scheme_stepper *st);
 
+/* Set the count of steps taken (the step number in messages), e.g. to 0
+ * for a new run with the same stepper (its compiled tapes are kept), or to
+ * where a caller that stepped by other means hands over. */
+void hl_scheme_stepper_restart(hl_scheme_stepper *st, long steps);
+
+/* An explicit scheme's step as expressions over q_1..q_N, p_1..p_N and D
+ * (integrals replaced by the stepper's Gauss sums): Z[0..2N-1] = (Q, P), the
+ * expressions the stepper compiles, in the system's pool.  For callers that
+ * compile the step together with other expressions (the runner fuses it
+ * with H).  HL_EINVAL for an implicit scheme. */
+int hl_scheme_step_exprs(const hl_expr **Z, const hl_scheme *s, hl_error *err);
+
 #ifdef __cplusplus
 }
 #endif

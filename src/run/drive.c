@@ -164,6 +164,92 @@ static int fixed_ref(drive *d, hl_error *err)
     return st;
 }
 
+/* ---- the fast path of a long fixed-step run without the reference --------
+ * An explicit scheme's step and H are compiled into one tape z, D -> (Z,
+ * H(z)), where the step and the energy of the state it leaves share their
+ * subexpressions (the pendulum's sin q and cos q are one sincos), and it is
+ * iterated in machine code from one delivered row to the next, max |H - H0|
+ * kept in the loop (hl_tape_iterate_watch): no call, no copy per step.  At
+ * a value that is not finite the loop stops before that step and the
+ * scheme's stepper takes over, so failures read as on the slow path. */
+
+/* Steps from which the fused loop pays for its compilation: compiling
+ * costs about 25 ms + 0.1 ms per instruction (hl_tape_jit), and each step
+ * saves the stepper's call, copies and checks (about 50 ns, bench/
+ * run_fixed.c) besides the interpreter's 2.4 ns per instruction. */
+static long fused_breakeven(const hl_tape *t)
+{
+    double n = hl_tape_nops(t);
+    return (long)((25e6 + 1e5 * n) / (50 + 2.4 * n));
+}
+
+/* The fused tape, compiled, if this run should use it. */
+static int fused_ready(hl_run *r, long nsteps)
+{
+    if (!r->jit || r->scheme == NULL || r->fused_failed || !hl_tape_jit_available())
+        return 0;
+    if (r->fused == NULL) {
+        int n2 = 2 * r->N;
+        const hl_expr **outs = hl_xmalloc((size_t)(n2 + 1) * sizeof *outs);
+        const char **in = hl_xmalloc((size_t)(n2 + 1) * sizeof *in);
+        memcpy(in, r->names, (size_t)n2 * sizeof *in);
+        in[n2] = "D";
+        outs[n2] = r->outs[0];
+        if (hl_scheme_step_exprs(outs, r->scheme, NULL) != HL_OK ||
+            hl_tape_new(&r->fused, outs, n2 + 1, in, n2 + 1, NULL) != HL_OK)
+            r->fused_failed = 1;
+        free(outs), free(in);
+        if (r->fused_failed)
+            return 0;
+    }
+    if (hl_tape_jit_active(r->fused))
+        return 1;
+    if (nsteps < fused_breakeven(r->fused))
+        return 0;
+    if (hl_tape_jit(r->fused, NULL) != HL_OK) {
+        hl_tape_free(r->fused);
+        r->fused = NULL;
+        r->fused_failed = 1;
+        return 0;
+    }
+    return 1;
+}
+
+/* Steps 1.. on the fused tape, rows where due; returns the last step
+ * reached (d->n when all went well), *st the status of the rows. */
+static long fixed_fused(drive *d, int *st)
+{
+    hl_run *r = d->r;
+    int n2 = 2 * r->N;
+    size_t bytes = (size_t)n2 * sizeof *r->z;
+    double *in = hl_xmalloc(bytes + sizeof *in), *save = hl_xmalloc(bytes);
+    long k = 0;
+    *st = HL_OK;
+    while (*st == HL_OK && k < d->n) {
+        long next = d->fn == NULL ? d->n : (k / d->every + 1) * d->every;
+        long m = (next > d->n ? d->n : next) - k;
+        memcpy(save, r->z, bytes);
+        memcpy(in, r->z, bytes);
+        in[n2] = d->dt;
+        long done = hl_tape_iterate_watch(in, m, d->s->H0, &d->s->max_dH, r->fused);
+        if (done > 0 && done < m) {
+            /* state k + done has an H or a step that is not finite: back
+             * to the state before it, so that the stepper retakes that
+             * step and the failure reads as on the stepper's path */
+            memcpy(in, save, bytes);
+            hl_tape_iterate_watch(in, --done, d->s->H0, &d->s->max_dH, r->fused);
+        }
+        memcpy(r->z, in, bytes);
+        if (done > 0) /* a delivered row if done == m, else only the statistics */
+            *st = row(d, k + done, NULL);
+        k += done;
+        if (done < m)
+            break;
+    }
+    free(in), free(save);
+    return k;
+}
+
 static int start(drive *d, hl_run *r, const double *z0, double dt, double t, long every,
                  hl_run_fn fn, void *arg, hl_run_stats *s, hl_error *err)
 {
@@ -192,30 +278,32 @@ int hl_run_fixed(hl_run *r, const double *z0, double dt, double t, long every,
     int st = start(&d, r, z0, dt, t, every, fn, arg, s, err);
     if (st != HL_OK)
         return st;
-    /* a fresh stepper for each run: its step count (in its messages)
-     * starts at 1 */
-    if (r->stepped && r->stepper != NULL) {
-        hl_scheme_stepper *fresh = NULL;
-        if ((st = hl_scheme_stepper_new(&fresh, r->scheme, err)) != HL_OK)
-            return st;
-        hl_scheme_stepper_free(r->stepper);
-        r->stepper = fresh;
-    }
-    r->stepped = 1;
-    /* H and the observers are evaluated at every step: for long runs
-     * machine code (same results bit for bit) pays for its compilation */
-    if (r->jit && d.n >= JIT_MIN_STEPS && !hl_tape_jit_active(r->obs) &&
+    /* each run counts its steps (in messages) from 1 */
+    if (r->stepper != NULL)
+        hl_scheme_stepper_restart(r->stepper, 0);
+    int fused = !r->ref_on && r->stepper != NULL && fused_ready(r, d.n);
+    /* H and the observers are evaluated at every row, and at every step
+     * unless fused: for long runs machine code (same results bit for bit)
+     * pays for its compilation */
+    long evals = fused ? (d.fn != NULL ? d.n / d.every : 1) : d.n;
+    if (r->jit && evals >= JIT_MIN_STEPS && !hl_tape_jit_active(r->obs) &&
         hl_tape_jit_available())
         hl_tape_jit(r->obs, NULL); /* on failure the interpreter goes on */
-    if (r->jit && r->stepper != NULL)
+    if (r->jit && r->stepper != NULL && !fused)
         hl_scheme_stepper_jit(r->stepper, d.n);
     st = row(&d, 0, r->ref_on ? z0 : NULL);
     if (st == HL_OK && r->ref_on)
         st = fixed_ref(&d, err);
-    else
-        for (long k = 1; st == HL_OK && k <= d.n; k++)
+    else if (st == HL_OK) {
+        long k = 0;
+        if (fused) {
+            k = fixed_fused(&d, &st);
+            hl_scheme_stepper_restart(r->stepper, k);
+        }
+        for (k++; st == HL_OK && k <= d.n; k++)
             if ((st = advance(&d, k)) == HL_OK)
                 st = row(&d, k, NULL);
+    }
     s->failed = st != HL_OK && d.user == 0;
     return d.user != 0 ? d.user : st;
 }

@@ -84,6 +84,7 @@ void hl_run_free(hl_run *r)
         return;
     hl_scheme_stepper_free(r->stepper);
     hl_tape_free(r->obs);
+    hl_tape_free(r->fused);
     hl_tape_free(r->vf);
     free(r->names), free(r->outs), free(r->z), free(r->ref), free(r->vals), free(r->zs);
     free(r);

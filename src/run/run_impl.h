@@ -10,7 +10,6 @@ struct hl_run {
     int N;
     const hl_scheme *scheme;    /* borrowed; NULL for the adaptive run */
     hl_scheme_stepper *stepper; /* NULL for the adaptive run */
-    int stepped;                /* the stepper has taken steps: rebuild it */
     hl_run_step_fn step;        /* a caller's stepper instead (hl_run_new_stepper) */
     void *step_arg;
     double *zs;                 /* the state before a caller's step */
@@ -21,6 +20,8 @@ struct hl_run {
     hl_tape *vf;                /* the Hamiltonian vector field, for the reference */
     int ref_on;
     int jit;                    /* compile obs to machine code for long runs */
+    hl_tape *fused;             /* explicit step and H: z, D -> Z, H(z) (drive.c) */
+    int fused_failed;           /* no fused tape for this scheme */
     double ref_tol;
     double *z, *ref, *vals;     /* state, reference, H and observers */
 };

@@ -35,6 +35,13 @@ void hl_scheme_stepper_free(hl_scheme_stepper *st)
 
 int hl_scheme_stepper_iterations(const hl_scheme_stepper *st) { return st->iters; }
 
+void hl_scheme_stepper_restart(hl_scheme_stepper *st, long steps)
+{
+    st->steps = steps;
+    st->iters = 0;
+    st->last_ratio = 0;
+}
+
 /* Each step evaluates the step tape once (explicit) or the residual and
  * Jacobian tapes once per Newton iteration; counting one evaluation a step
  * underestimates, so compiling is never chosen where it cannot pay. */
@@ -129,9 +136,9 @@ static void quadrature(const hl_expr **lhs, const hl_expr **rhs, const hl_scheme
     free(val);
 }
 
-/* Explicit: inline the equations in order; outputs Q, P. */
-static int compile_explicit(hl_scheme_stepper *st, const hl_scheme *s, const hl_expr **rhs,
-                            const char **inputs, hl_pool *pool, hl_error *err)
+/* Explicit: inline the equations in order; outs[0..2N-1] = Q, P. */
+static void explicit_map(const hl_expr **outs, const hl_scheme *s, const hl_expr **rhs,
+                         hl_pool *pool)
 {
     const hl_expr **val = hl_xcalloc((size_t)s->m, sizeof *val);
     const char **names = hl_xmalloc((size_t)s->m * sizeof *names);
@@ -145,14 +152,34 @@ static int compile_explicit(hl_scheme_stepper *st, const hl_scheme *s, const hl_
             }
         val[s->defines[i]] = hl_expr_subst(pool, rhs[i], k, names, vals);
     }
-    const hl_expr **outs = hl_xmalloc((size_t)(2 * s->N) * sizeof *outs);
     for (int j = 0; j < s->N; j++) {
         outs[j] = val[s->iQ[j]];
         outs[s->N + j] = val[s->iP[j]];
     }
+    free(val), free(names), free(vals);
+}
+
+static int compile_explicit(hl_scheme_stepper *st, const hl_scheme *s, const hl_expr **rhs,
+                            const char **inputs, hl_pool *pool, hl_error *err)
+{
+    const hl_expr **outs = hl_xmalloc((size_t)(2 * s->N) * sizeof *outs);
+    explicit_map(outs, s, rhs, pool);
     int rc = hl_tape_new(&st->tape, outs, 2 * s->N, inputs, 2 * s->N + 1, err);
-    free(outs), free(val), free(names), free(vals);
+    free(outs);
     return rc;
+}
+
+int hl_scheme_step_exprs(const hl_expr **Z, const hl_scheme *s, hl_error *err)
+{
+    if (!s->all_explicit)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "the scheme '%s' is implicit", s->name);
+    hl_pool *pool = hl_system_pool(s->sys);
+    const hl_expr **lhs = hl_xmalloc((size_t)s->m * sizeof *lhs);
+    const hl_expr **rhs = hl_xmalloc((size_t)s->m * sizeof *rhs);
+    quadrature(lhs, rhs, s, pool);
+    explicit_map(Z, s, rhs, pool);
+    free(lhs), free(rhs);
+    return HL_OK;
 }
 
 static int has_unknown(const hl_expr *e, const hl_scheme *s)
