@@ -181,11 +181,14 @@ int hl_scheme_expand(hl_series *Z, const hl_scheme *s, int n, hl_error *err);
 
 /* A stepper: the scheme compiled to tapes (tape.h) for steps in double.
  * Explicit schemes: the equations are inlined in order into one tape
- * z, D -> (Q, P) (shared subexpressions computed once).  Others: Newton on
- * all the equations F = lhs - rhs (simplified Newton: the Jacobian dF/dU,
- * from hl_expr_diff compiled to its own tape, is evaluated and factored at
- * the start and again only when convergence slows), starting from the unknowns' values at D = 0
- * with (Q, P) predicted by explicit Euler.  Integrals: Gauss-Legendre with
+ * z, D -> (Q, P) (shared subexpressions computed once).  Others: an unknown
+ * that an equation gives explicitly (U = an expression free of U: Q and P of
+ * a Runge-Kutta scheme) is substituted into the other equations, and Newton
+ * solves the rest F = lhs - rhs (simplified Newton: the Jacobian dF/dU, from
+ * hl_expr_diff compiled with F, is evaluated and factored at the start and
+ * again only when convergence slows; it stops when a correction is at
+ * rounding level), starting from the unknowns' values at D = 0 with (Q, P)
+ * predicted by explicit Euler.  Integrals: Gauss-Legendre with
  * HL_SCHEME_GAUSS_NODES nodes.  An equation that divides by an expression
  * in the unknowns is first put in exact canonical form (alg.h), which
  * removes 0/0 such as the paper's (P^2 - p^2)/(P - p) at P = p.  Every
