@@ -281,7 +281,10 @@ int hl_run_fixed(hl_run *r, const double *z0, double dt, double t, long every,
     /* each run counts its steps (in messages) from 1 */
     if (r->stepper != NULL)
         hl_scheme_stepper_restart(r->stepper, 0);
-    int fused = !r->ref_on && r->stepper != NULL && fused_ready(r, d.n);
+    /* fused only where rows are sparse: a row every step or few gains
+     * nothing from the loop, and would pay its compilation */
+    int fused = !r->ref_on && r->stepper != NULL && (d.fn == NULL || d.every >= 16) &&
+                fused_ready(r, d.n);
     /* H and the observers are evaluated at every row, and at every step
      * unless fused: for long runs machine code (same results bit for bit)
      * pays for its compilation */
