@@ -403,7 +403,7 @@ static void add_env_flags(gcc_jit_context *c)
  * the results are those of plain SSE2 code; the wider registers let GCC
  * pair the recurrences' independent products (bench/taylor_flow.c: Kepler's
  * recursion 30% faster with AVX-512). */
-static void add_host_isa(gcc_jit_context *c)
+static int add_host_isa(gcc_jit_context *c)
 {
 #if defined(__x86_64__) && defined(__GNUC__)
     __builtin_cpu_init();
@@ -415,8 +415,10 @@ static void add_host_isa(gcc_jit_context *c)
         gcc_jit_context_add_command_line_option(c, "-march=x86-64-v4");
     else if (v3)
         gcc_jit_context_add_command_line_option(c, "-march=x86-64-v3");
+    return v3; /* FMA instructions */
 #else
     (void)c;
+    return 0;
 #endif
 }
 
@@ -432,12 +434,14 @@ typedef struct tj {
     gcc_jit_rvalue **term; /* a sum's terms known a round ago */
     int n, cap;
     gcc_jit_rvalue *fresh[2]; /* and those that read coefficient k (j = 0, k) */
-    int nfresh;
+    int fresh_reg[2], nfresh;
     const char *fname[16]; /* the libm functions imported so far */
     gcc_jit_function *fimp[16];
     int nf;
     gcc_jit_lvalue **inv; /* by instruction: 1 / its divisor's coefficient 0 */
+    gcc_jit_lvalue **inv2; /* DIV, KDIV: d[0] / that divisor */
     gcc_jit_lvalue **coef; /* the locals of the coefficients (RL) */
+    int fma;               /* the machine code may use FMA instructions */
 } tj;
 
 /* Coefficient j of register reg: constants are read from the register
@@ -490,11 +494,13 @@ static gcc_jit_rvalue *NEG_(tj *T, gcc_jit_rvalue *a)
 }
 
 /* A term is fresh when it reads a coefficient k computed in this round
- * (j = 0 or j = k in a convolution); the others were known a round ago. */
+ * (j = 0 or j = k in a convolution); the others were known a round ago.
+ * fresh: the register whose coefficient k the term reads, else -1. */
 static void tterm(tj *T, gcc_jit_rvalue *v, int fresh)
 {
-    if (fresh) {
-        T->fresh[T->nfresh++] = v;
+    if (fresh >= 0 && T->nfresh < 2) { /* a convolution has at most two */
+        T->fresh[T->nfresh] = v;
+        T->fresh_reg[T->nfresh++] = fresh;
         return;
     }
     if (T->n == T->cap) {
@@ -513,39 +519,54 @@ static gcc_jit_rvalue *tsum_range(tj *T, int lo, int hi)
 }
 
 /* The collected terms as native.c's sum: the known terms as a balanced
- * tree, the fresh ones added at its root, so that the chain from one
- * order to the next goes through one multiplication and two additions
- * rather than through the whole tree; 0.0 if there are none. */
+ * tree, then the fresh ones added one by one, the one computed last (the
+ * higher register) last, so that the chain from one order to the next
+ * goes through one multiplication and one addition per instruction rather
+ * than through the whole tree; 0.0 if there are none. */
 static gcc_jit_rvalue *tsum(tj *T)
 {
-    gcc_jit_rvalue *v = T->n == 0 ? NULL : tsum_range(T, 0, T->n), *f = NULL;
+    gcc_jit_rvalue *v = T->n == 0 ? NULL : tsum_range(T, 0, T->n);
+    if (T->nfresh == 2 && T->fresh_reg[0] > T->fresh_reg[1]) {
+        gcc_jit_rvalue *f = T->fresh[0];
+        T->fresh[0] = T->fresh[1], T->fresh[1] = f;
+    }
     for (int i = 0; i < T->nfresh; i++)
-        f = f == NULL ? T->fresh[i] : ADD_(f, T->fresh[i]);
-    if (f != NULL)
-        v = v == NULL ? f : ADD_(v, f);
+        v = v == NULL ? T->fresh[i] : ADD_(v, T->fresh[i]);
     T->n = T->nfresh = 0;
     return v == NULL ? NUM(T, 0.0) : v;
+}
+
+/* which register's coefficient k the term x[j] y[k-j] reads, or -1 */
+static int fresh_of(int x, int y, int j, int k)
+{
+    return j == k ? x : j == 0 ? y : -1;
 }
 
 static void tconv(tj *T, int x, int y, int lo, int hi, int k)
 {
     for (int j = lo; j <= hi; j++)
-        tterm(T, MUL_(RV(T, x, j), RV(T, y, k - j)), j == 0 || j == k);
+        tterm(T, MUL_(RV(T, x, j), RV(T, y, k - j)), fresh_of(x, y, j, k));
 }
 
+/* (w x[j]) y[k-j]; for the fresh x[k] (w y[0]) x[k], one product on the
+ * chain */
 static void twconv(tj *T, int x, int y, int lo, int hi, int k, int wa, int wb)
 {
-    for (int j = lo; j <= hi; j++)
-        tterm(T, MUL_(MUL_(NUM(T, wa * j + wb), RV(T, x, j)), RV(T, y, k - j)), j == 0 || j == k);
+    for (int j = lo; j <= hi; j++) {
+        gcc_jit_rvalue *w = NUM(T, wa * j + wb);
+        gcc_jit_rvalue *v = j == k && k > 0 ? MUL_(MUL_(w, RV(T, y, k - j)), RV(T, x, j))
+                                            : MUL_(MUL_(w, RV(T, x, j)), RV(T, y, k - j));
+        tterm(T, v, fresh_of(x, y, j, k));
+    }
 }
 
 /* the terms j = lo..k-lo of (x*x)[k], using symmetry */
 static void tsqr_from(tj *T, int x, int k, int lo)
 {
     for (int j = lo; 2 * j < k; j++)
-        tterm(T, MUL_(MUL_(NUM(T, 2.0), RV(T, x, j)), RV(T, x, k - j)), j == 0);
+        tterm(T, MUL_(MUL_(NUM(T, 2.0), RV(T, x, j)), RV(T, x, k - j)), j == 0 ? x : -1);
     if (k % 2 == 0 && k / 2 >= lo)
-        tterm(T, MUL_(RV(T, x, k / 2), RV(T, x, k / 2)), k == 0);
+        tterm(T, MUL_(RV(T, x, k / 2), RV(T, x, k / 2)), k == 0 ? x : -1);
 }
 
 static void tsqr(tj *T, int x, int k)
@@ -590,6 +611,20 @@ static gcc_jit_rvalue *INV(tj *T, int i)
 {
     return gcc_jit_lvalue_as_rvalue(T->inv[i]);
 }
+/* DIV and KDIV: d[0] times that reciprocal, so that the fresh term b[k] d[0]
+ * of d[k] = (a[k] - sum_j b[j] d[k-j]) / b[0] enters as b[k] (d[0]/b[0]):
+ * one product and one subtraction on the chain */
+static void keep_ratio(tj *T, int i, gcc_jit_rvalue *d0)
+{
+    char name[32];
+    snprintf(name, sizeof name, "rat%d", i);
+    T->inv2[i] = gcc_jit_function_new_local(T->J.fun, NULL, T->J.dbl, name);
+    gcc_jit_block_add_assignment(T->J.blk, NULL, T->inv2[i], MUL_(d0, INV(T, i)));
+}
+static gcc_jit_rvalue *RATIO(tj *T, int i)
+{
+    return gcc_jit_lvalue_as_rvalue(T->inv2[i]);
+}
 /* v / k as v * (1/k) */
 static gcc_jit_rvalue *OVER_K(tj *T, gcc_jit_rvalue *v, int k)
 {
@@ -624,10 +659,12 @@ static void temit(tj *T, const hl_instr *in, int i, int k)
         if (k == 0) {
             tset(T, d, k, DIV_(RV(T, a, 0), RV(T, b, 0)));
             keep_inverse(T, i, RV(T, b, 0));
+            keep_ratio(T, i, RV(T, d, 0));
             return;
         }
-        tconv(T, b, d, 1, k, k);
-        tset(T, d, k, MUL_(SUB_(RV(T, a, k), tsum(T)), INV(T, i)));
+        tconv(T, b, d, 1, k - 1, k); /* the known terms */
+        tset(T, d, k,
+             SUB_(MUL_(SUB_(RV(T, a, k), tsum(T)), INV(T, i)), MUL_(RV(T, b, k), RATIO(T, i))));
         return;
     case HL_OP_ADDK:
     case HL_OP_SUBK:
@@ -651,10 +688,12 @@ static void temit(tj *T, const hl_instr *in, int i, int k)
         if (k == 0) {
             tset(T, d, k, DIV_(RV(T, b, 0), RV(T, a, 0)));
             keep_inverse(T, i, RV(T, a, 0));
+            keep_ratio(T, i, RV(T, d, 0));
             return;
         }
-        tconv(T, a, d, 1, k, k);
-        tset(T, d, k, MUL_(NEG_(T, tsum(T)), INV(T, i)));
+        tconv(T, a, d, 1, k - 1, k); /* the known terms */
+        tset(T, d, k,
+             SUB_(MUL_(NEG_(T, tsum(T)), INV(T, i)), MUL_(RV(T, a, k), RATIO(T, i))));
         return;
     case HL_OP_POWK:
         if (k == 0) {
@@ -669,7 +708,7 @@ static void temit(tj *T, const hl_instr *in, int i, int k)
                   MUL_(MUL_(SUB_(MUL_(ADD_(RV(T, b, 0), NUM(T, 1.0)), NUM(T, m)), NUM(T, K)),
                             RV(T, a, m)),
                        RV(T, d, k - m)),
-                  m == k);
+                  m == k ? a : -1);
         tset(T, d, k, OVER_K(T, MUL_(tsum(T), INV(T, i)), k));
         return;
     case HL_OP_SQRT:
@@ -765,6 +804,27 @@ static void temit(tj *T, const hl_instr *in, int i, int k)
     }
 }
 
+/* f / n as fma(f, r_hi, f r_lo) with r_hi + r_lo = 1/n to twice double
+ * precision (hl_tape_recip_split): the quotient rounded once, so the bits
+ * of the division (but for f/n within 2^-105 of a rounding boundary), in a
+ * multiplication and an FMA (8 cycles) instead of a division (13-14) on
+ * the chain from one order to the next.  f * fl(1/n) alone is not enough:
+ * 1/n's rounding error has a fixed sign and drifts the phase (the
+ * oscillator's energy error at t = 1e4 grows tenfold).  Without FMA in the
+ * machine (fma would be a call), the division. */
+static gcc_jit_rvalue *over_k1(tj *T, gcc_jit_rvalue *f, int n)
+{
+    double hi, lo;
+    hl_tape_recip_split(&hi, &lo, n);
+    if (lo == 0)
+        return MUL_(f, NUM(T, hi)); /* n a power of 2: exact */
+    if (!T->fma)
+        return DIV_(f, NUM(T, n));
+    gcc_jit_function *fma_ = gcc_jit_context_get_builtin_function(T->J.c, "__builtin_fma");
+    gcc_jit_rvalue *args[3] = {f, NUM(T, hi), MUL_(f, NUM(T, lo))};
+    return gcc_jit_context_new_call(T->J.c, NULL, fma_, 3, args);
+}
+
 int hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tape *t, int order,
                        hl_error *err)
 {
@@ -777,9 +837,9 @@ int hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tape *t, 
     gcc_jit_context_set_bool_option(c, GCC_JIT_BOOL_OPTION_DEBUGINFO, 0);
     gcc_jit_context_set_bool_print_errors_to_stderr(c, 0);
     gcc_jit_context_add_command_line_option(c, "-ffp-contract=off");
-    add_host_isa(c);
+    int fma = add_host_isa(c);
     add_env_flags(c);
-    tj Tv = {.J = {.c = c, .t = t}, .S = order + 1}, *T = &Tv;
+    tj Tv = {.J = {.c = c, .t = t}, .S = order + 1, .fma = fma}, *T = &Tv;
     T->J.dbl = gcc_jit_context_get_type(c, GCC_JIT_TYPE_DOUBLE);
     T->J.dblp = gcc_jit_type_get_pointer(T->J.dbl);
     T->J.sqrt = gcc_jit_context_get_builtin_function(c, "__builtin_sqrt");
@@ -790,6 +850,7 @@ int hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tape *t, 
     T->R = gcc_jit_param_as_rvalue(prm);
     T->J.blk = gcc_jit_function_new_block(T->J.fun, "body");
     T->inv = hl_xcalloc((size_t)t->ncode + 1, sizeof *T->inv);
+    T->inv2 = hl_xcalloc((size_t)t->ncode + 1, sizeof *T->inv2);
     T->coef = hl_xcalloc((size_t)t->nregs * (size_t)T->S, sizeof *T->coef);
     for (int i = 0; i < t->nin; i++)
         tset(T, i, 0, gcc_jit_lvalue_as_rvalue(RMEM(T, i, 0)));
@@ -797,7 +858,7 @@ int hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tape *t, 
         for (int i = 0; i < t->ncode; i++)
             temit(T, &t->code[i], i, k);
         for (int i = 0; i < t->nin; i++)
-            tset(T, i, k + 1, DIV_(RV(T, t->outreg[i], k), NUM(T, k + 1)));
+            tset(T, i, k + 1, over_k1(T, RV(T, t->outreg[i], k), k + 1));
     }
     for (int i = 0; i < t->nin; i++)
         for (int k = 1; k <= order; k++)
@@ -805,6 +866,7 @@ int hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tape *t, 
     gcc_jit_block_end_with_void_return(T->J.blk, NULL);
     free(T->term);
     free(T->inv);
+    free(T->inv2);
     free(T->coef);
     gcc_jit_result *res = gcc_jit_context_compile(c);
     void *f = res ? gcc_jit_result_get_code(res, "hl_native") : NULL;

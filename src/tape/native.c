@@ -22,6 +22,7 @@
 #define _GNU_SOURCE
 #include <dlfcn.h>
 #include <fcntl.h>
+#include <math.h>
 #include <spawn.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -37,26 +38,31 @@ extern char **environ;
 
 /* ---- sums of terms, printed as balanced trees ------------------------------ */
 
-/* A sum's terms: those known a round ago first (t[0..n-1]), and the fresh
+/* A sum's terms: those known a round ago (t[0..n-1]), and apart the fresh
  * ones, which read a coefficient k computed in this round (j = 0 or j = k
- * in a convolution), apart (f[0..nf-1]). */
+ * in a convolution), with the register they read it from (f, freg). */
 typedef struct terms {
     char (*t)[128];
     int n, cap;
     char f[2][128];
-    int nf;
+    int freg[2], nf;
 } terms;
 
+/* fresh: the register whose coefficient k the term reads, else -1 */
 static void term(terms *ts, int fresh, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 static void term(terms *ts, int fresh, const char *fmt, ...)
 {
-    if (!fresh && ts->n == ts->cap) {
+    if (ts->nf == 2) /* a convolution has at most two */
+        fresh = -1;
+    if (fresh < 0 && ts->n == ts->cap) {
         ts->cap = ts->cap ? 2 * ts->cap : 64;
         ts->t = hl_xrealloc(ts->t, (size_t)ts->cap * sizeof *ts->t);
     }
+    if (fresh >= 0)
+        ts->freg[ts->nf] = fresh;
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(fresh ? ts->f[ts->nf++] : ts->t[ts->n++], sizeof ts->t[0], fmt, ap);
+    vsnprintf(fresh >= 0 ? ts->f[ts->nf++] : ts->t[ts->n++], sizeof ts->t[0], fmt, ap);
     va_end(ap);
 }
 
@@ -74,26 +80,28 @@ static void put_sum(hl_buf *b, const terms *ts, int lo, int hi)
     hl_buf_putc(b, ')');
 }
 
-/* "(sum)" of the collected terms, or "0.0"; resets the list.  The known
- * terms form a balanced tree and the fresh ones are added at its root, so
- * that the chain from one order to the next goes through one
- * multiplication and two additions rather than through the whole tree. */
+/* "(sum)" of the collected terms, or "0.0"; resets the list.  As jit.c's
+ * tsum: the known terms as a balanced tree, then the fresh ones one by one,
+ * the higher register last, so that the chain from one order to the next
+ * goes through one multiplication and one addition per instruction. */
 static void sum(hl_buf *b, terms *ts)
 {
     if (ts->n == 0 && ts->nf == 0)
         hl_buf_puts(b, "0.0");
-    if (ts->n > 0 && ts->nf > 0)
+    int order[2] = {0, 1};
+    if (ts->nf == 2 && ts->freg[0] > ts->freg[1])
+        order[0] = 1, order[1] = 0;
+    for (int i = 0; i < ts->nf + (ts->n > 0) - 1; i++)
         hl_buf_putc(b, '(');
     if (ts->n > 0)
         put_sum(b, ts, 0, ts->n);
-    if (ts->n > 0 && ts->nf > 0)
-        hl_buf_puts(b, " + ");
-    if (ts->nf == 2)
-        hl_buf_printf(b, "(%s + %s)", ts->f[0], ts->f[1]);
-    else if (ts->nf == 1)
-        hl_buf_puts(b, ts->f[0]);
-    if (ts->n > 0 && ts->nf > 0)
-        hl_buf_putc(b, ')');
+    for (int i = 0; i < ts->nf; i++) {
+        if (i > 0 || ts->n > 0)
+            hl_buf_puts(b, " + ");
+        hl_buf_puts(b, ts->f[order[i]]);
+        if (i > 0 || ts->n > 0)
+            hl_buf_putc(b, ')');
+    }
     ts->n = ts->nf = 0;
 }
 
@@ -101,32 +109,49 @@ static void sum(hl_buf *b, terms *ts)
 
 #define R(reg, j) ((long)(reg) * S + (j))
 
+/* which register's coefficient k the term x[j] y[k-j] reads, or -1 */
+static int fresh_of(int x, int y, int j, int k)
+{
+    return j == k ? x : j == 0 ? y : -1;
+}
+
 /* terms x[j] y[k-j], j = lo..hi */
 static void conv(terms *ts, int x, int y, int lo, int hi, int k, int S)
 {
     for (int j = lo; j <= hi; j++)
-        term(ts, j == 0 || j == k, "R[%ld]*R[%ld]", R(x, j), R(y, k - j));
+        term(ts, fresh_of(x, y, j, k), "R[%ld]*R[%ld]", R(x, j), R(y, k - j));
 }
 
-/* terms (wa*j + wb) x[j] y[k-j], j = lo..hi */
+/* terms (wa*j + wb) x[j] y[k-j], j = lo..hi; the fresh x[k] as
+ * (w y[0]) x[k] (jit.c's twconv) */
 static void wconv(terms *ts, int x, int y, int lo, int hi, int k, int wa, int wb, int S)
 {
-    for (int j = lo; j <= hi; j++)
-        term(ts, j == 0 || j == k, "%d.0*R[%ld]*R[%ld]", wa * j + wb, R(x, j), R(y, k - j));
+    for (int j = lo; j <= hi; j++) {
+        if (j == k && k > 0)
+            term(ts, x, "%d.0*R[%ld]*R[%ld]", wa * j + wb, R(y, k - j), R(x, j));
+        else
+            term(ts, fresh_of(x, y, j, k), "%d.0*R[%ld]*R[%ld]", wa * j + wb, R(x, j), R(y, k - j));
+    }
 }
 
 /* the terms j = lo..k-lo of (x*x)[k], using symmetry */
 static void sqr_terms_from(terms *ts, int x, int k, int lo, int S)
 {
     for (int j = lo; 2 * j < k; j++)
-        term(ts, j == 0, "2.0*R[%ld]*R[%ld]", R(x, j), R(x, k - j));
+        term(ts, j == 0 ? x : -1, "2.0*R[%ld]*R[%ld]", R(x, j), R(x, k - j));
     if (k % 2 == 0 && k / 2 >= lo)
-        term(ts, k == 0, "R[%ld]*R[%ld]", R(x, k / 2), R(x, k / 2));
+        term(ts, k == 0 ? x : -1, "R[%ld]*R[%ld]", R(x, k / 2), R(x, k / 2));
 }
 
 static void sqr_terms(terms *ts, int x, int k, int S)
 {
     sqr_terms_from(ts, x, k, 0, S);
+}
+
+void hl_tape_recip_split(double *hi, double *lo, int n)
+{
+    *hi = 1.0 / n;
+    *lo = fma(-*hi, (double)n, 1.0) / n; /* the residual 1 - hi n is exact */
 }
 
 /* As jit.c: the reciprocal of a divisor's coefficient 0 is kept in a
@@ -137,6 +162,12 @@ static void keep_inverse(hl_buf *b, int i, const char *fmt, long reg)
     hl_buf_printf(b, "    const double inv%d = 1.0 / (", i);
     hl_buf_printf(b, fmt, reg);
     hl_buf_puts(b, ");\n");
+}
+
+/* DIV, KDIV (jit.c's keep_ratio): rat<i> = d[0] * inv<i> */
+static void keep_ratio(hl_buf *b, int i, long d0)
+{
+    hl_buf_printf(b, "    const double rat%d = R[%ld] * inv%d;\n", i, d0, i);
 }
 
 static void gen_instr(hl_buf *b, terms *ts, const hl_instr *in, int i, int k, int S)
@@ -155,12 +186,13 @@ static void gen_instr(hl_buf *b, terms *ts, const hl_instr *in, int i, int k, in
         if (k == 0) {
             hl_buf_printf(b, "R[%ld] / R[%ld];\n", R(a, 0), R(bb, 0));
             keep_inverse(b, i, "R[%ld]", R(bb, 0));
+            keep_ratio(b, i, R(d, 0));
             return;
         }
         hl_buf_printf(b, "(R[%ld] - ", R(a, k));
-        conv(ts, bb, d, 1, k, k, S);
+        conv(ts, bb, d, 1, k - 1, k, S); /* the known terms */
         sum(b, ts);
-        hl_buf_printf(b, ") * inv%d;\n", i);
+        hl_buf_printf(b, ") * inv%d - R[%ld] * rat%d;\n", i, R(bb, k), i);
         return;
     case HL_OP_ADDK:
     case HL_OP_SUBK:
@@ -178,12 +210,13 @@ static void gen_instr(hl_buf *b, terms *ts, const hl_instr *in, int i, int k, in
         if (k == 0) {
             hl_buf_printf(b, "R[%ld] / R[%ld];\n", R(bb, 0), R(a, 0));
             keep_inverse(b, i, "R[%ld]", R(a, 0));
+            keep_ratio(b, i, R(d, 0));
             return;
         }
         hl_buf_puts(b, "-");
-        conv(ts, a, d, 1, k, k, S);
+        conv(ts, a, d, 1, k - 1, k, S); /* the known terms */
         sum(b, ts);
-        hl_buf_printf(b, " * inv%d;\n", i);
+        hl_buf_printf(b, " * inv%d - R[%ld] * rat%d;\n", i, R(a, k), i);
         return;
     case HL_OP_POWK:
         if (k == 0) {
@@ -193,7 +226,7 @@ static void gen_instr(hl_buf *b, terms *ts, const hl_instr *in, int i, int k, in
         }
         /* sum_{m=1..k} ((c+1) m - k) a[m] d[k-m] / (k a[0]) */
         for (int m = 1; m <= k; m++)
-            term(ts, m == k, "((R[%ld] + 1.0) * %d.0 - %d.0)*R[%ld]*R[%ld]", R(bb, 0), m, k, R(a, m),
+            term(ts, m == k ? a : -1, "((R[%ld] + 1.0) * %d.0 - %d.0)*R[%ld]*R[%ld]", R(bb, 0), m, k, R(a, m),
                  R(d, k - m));
         sum(b, ts);
         hl_buf_printf(b, " * inv%d * %.17g;\n", i, rk);
@@ -308,13 +341,24 @@ static char *gen_source(const hl_tape *t, int order)
     terms ts = {0};
     hl_buf_init(&b);
     hl_buf_puts(&b, "/* generated by hamlie (src/tape/native.c) */\n#include <math.h>\n"
+                    "#ifdef __FMA__ /* f/n rounded once: fma(f, hi, f lo) (jit.c's over_k1) */\n"
+                    "#define HL_OVER(f, hi, lo, n) fma((f), (hi), (f) * (lo))\n"
+                    "#else\n#define HL_OVER(f, hi, lo, n) ((f) / (n))\n#endif\n"
                     "void hl_native(double *restrict R)\n{\n");
     for (int k = 0; k < order; k++) {
         hl_buf_printf(&b, "    /* coefficient %d */\n", k);
         for (int i = 0; i < t->ncode; i++)
             gen_instr(&b, &ts, &t->code[i], i, k, S);
-        for (int i = 0; i < t->nin; i++)
-            hl_buf_printf(&b, "    R[%ld] = R[%ld] / %d.0;\n", R(i, k + 1), R(t->outreg[i], k), k + 1);
+        for (int i = 0; i < t->nin; i++) { /* / (k+1) as jit.c's over_k1 */
+            double hi, lo;
+            hl_tape_recip_split(&hi, &lo, k + 1);
+            long to = R(i, k + 1), from = R(t->outreg[i], k);
+            if (lo == 0)
+                hl_buf_printf(&b, "    R[%ld] = R[%ld] * %a;\n", to, from, hi);
+            else
+                hl_buf_printf(&b, "    R[%ld] = HL_OVER(R[%ld], %a, %a, %d.0);\n", to, from, hi,
+                              lo, k + 1);
+        }
     }
     hl_buf_puts(&b, "}\n");
     free(ts.t);

@@ -70,6 +70,10 @@ void hl_tape_run_d(const hl_instr *code, int n, double *r);
 void hl_tape_run_arb(const hl_instr *code, int n, arb_ptr r, slong prec);
 void hl_tape_consts_arb(arb_ptr r, slong prec, const hl_tape *tape);
 
+/* native.c: 1/n = *hi + *lo to about twice double precision (the native
+ * recursions divide by k+1 as f hi + f lo). */
+void hl_tape_recip_split(double *hi, double *lo, int n);
+
 /* jit.c: the Taylor-ODE recursion of native.c compiled by libgccjit
  * (HL_EUNSUP without it); the result is released by hl_tape_jit_release. */
 int hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tape *t, int order,

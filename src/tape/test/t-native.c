@@ -9,6 +9,7 @@
 
 #include "hl_test.h"
 #include "hamlie/tape.h"
+#include "tape/tape_impl.h"
 
 static const char *const vars[] = {"x", "y", "z"};
 static hl_pool *P;
@@ -125,8 +126,30 @@ static void suite(void)
     }
 }
 
+/* The compiled recursions divide by k+1 as fma(f, hi, f lo) with
+ * hl_tape_recip_split's hi + lo = 1/n: the quotient rounded once, i.e. the
+ * division's bits, for n = 1..1000 and 200 random f each (a miss is
+ * possible only within 2^-105 of a rounding boundary: none expected). */
+static void test_recip_split(void)
+{
+    int miss = 0;
+    for (int n = 1; n <= 1000; n++) {
+        double hi, lo;
+        hl_tape_recip_split(&hi, &lo, n);
+        CHECK(hi == 1.0 / n && fabs(lo) <= 0x1p-53 * hi);
+        for (int r = 0; r < 200; r++) {
+            double f = ldexp((double)(rnd(1u << 30) + 1) / (1u << 30), (int)rnd(200) - 100);
+            if (rnd(2))
+                f = -f;
+            miss += fma(f, hi, f * lo) != f / n;
+        }
+    }
+    CHECK_MSG(miss == 0, "%d quotients differ from the division", miss);
+}
+
 int main(void)
 {
+    test_recip_split();
     P = hl_pool_new();
     unsetenv("HL_CC");
     printf("libgccjit%s\n", hl_tape_jit_available() ? "" : " (not built in: the system compiler)");
