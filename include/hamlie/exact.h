@@ -69,6 +69,17 @@ void hl_exact_flow_free(hl_exact_flow *f); /* NULL is a no-op */
  * Nonzero on failure (unbounded orbit, separatrix), z unchanged. */
 int hl_exact_flow_step(double *z, double dt, void *flow, hl_error *err);
 
+/* The Taylor coefficients in D of the exact step at z, as the scheme builds
+ * the step: coef[k*2N + i] = [D^k] psi_D(z)_i, k = 0..n.  1 dof: the step is
+ * a time shift along the tabulated orbit, psi_D(z) = orbit(t(z) + D), and
+ * its series is the orbit's Taylor series (Taylor mode) at the table's point
+ * for z's time, psi_0(z): compared with the flow's series at z, it checks
+ * that the action-angle map (z's time on the table) gives z back, at every
+ * order.  Quadratic H: (A^k (z, 1))/k! of the augmented matrix.  Errors as
+ * hl_exact_flow_step's. */
+int hl_exact_flow_series(double *coef, const double *z, int n, hl_exact_flow *f,
+                         hl_error *err);
+
 /* 1 if the flow is the linear (matrix exponential) kind. */
 int hl_exact_flow_is_linear(const hl_exact_flow *f);
 

@@ -49,6 +49,13 @@ int hl_numerr_compute(hl_numerr *r, const hl_scheme *s, const double *z, int n,
                       hl_error *err);
 void hl_numerr_clear(hl_numerr *r);
 
+/* The same analysis for a stepper that is not a scheme of the scheme
+ * language but gives its own series at z: psi[k*2N + i] = [D^k] psi_D(z)_i,
+ * k = 0..n (e.g. hl_exact_flow_series).  K needs the stepper at points
+ * other than z and is not computed: r->K is NaN. */
+int hl_numerr_from_series(hl_numerr *r, hl_system *sys, const double *z, const double *psi,
+                          int n, hl_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -709,10 +709,9 @@ static int run_scheme(dn *out, const hl_scheme *s, const dn *pt, int L, hl_error
     return st;
 }
 
-static int flow_coeffs(double *flow, const hl_scheme *s, const double *z, int n, hl_error *err)
+static int flow_coeffs(double *flow, hl_system *sys, const double *z, int n, hl_error *err)
 {
-    hl_system *sys = s->sys;
-    int N = s->N, ns = hl_system_nset(sys);
+    int N = hl_system_ndof(sys), ns = hl_system_nset(sys);
     const char **q = hl_xmalloc((size_t)(2 * N + ns + 1) * sizeof *q), **p = q + N,
                **pn = q + 2 * N;
     const hl_expr **pv = hl_xmalloc((size_t)(ns + 1) * sizeof *pv);
@@ -752,35 +751,37 @@ void hl_numerr_clear(hl_numerr *r)
     memset(r, 0, sizeof *r);
 }
 
-int hl_numerr_compute(hl_numerr *r, const hl_scheme *s, const double *z, int n, hl_error *err)
+/* r's arrays for order n and 2N phase variables; the checks of the order
+ * and of H. */
+static int numerr_start(hl_numerr *r, hl_system *sys, int n, hl_error *err)
 {
     memset(r, 0, sizeof *r);
     if (n < 2 || n > HL_NUMERR_MAX_ORDER)
         return hl_error_set(err, HL_ELIMIT, NULL, -1, 0, "the order must be 2..%d, not %d",
                             HL_NUMERR_MAX_ORDER, n);
-    if (!hl_system_has_H(s->sys))
+    if (!hl_system_has_H(sys))
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "the error analysis needs H");
-    int N = s->N, m2 = 2 * N, L = n + 1 + SLACK;
-    r->N = N, r->n = n;
+    int m2 = 2 * hl_system_ndof(sys);
+    r->N = m2 / 2, r->n = n;
     r->psi = calloc((size_t)(n + 1) * m2, sizeof(double));
     r->flow = calloc((size_t)(n + 1) * m2, sizeof(double));
     r->v = calloc((size_t)(n + 1) * m2, sizeof(double));
     r->K = calloc((size_t)n * m2, sizeof(double));
     r->vnorm = calloc((size_t)n + 1, sizeof(double));
     r->thresh = calloc((size_t)n + 1, sizeof(double));
-    dn *pt = calloc((size_t)m2 * L, sizeof *pt), *img = calloc((size_t)m2 * L, sizeof *img);
-    if (!r->psi || !r->flow || !r->v || !r->K || !r->vnorm || !r->thresh || !pt || !img)
+    if (!r->psi || !r->flow || !r->v || !r->K || !r->vnorm || !r->thresh)
         abort();
-    int st;
-    for (int i = 0; i < m2; i++)
-        pt[(size_t)i * L].r = z[i];
-    if ((st = run_scheme(img, s, pt, L, err)) != HL_OK)
-        goto done;
-    for (int i = 0; i < m2; i++)
-        for (int k = 0; k <= n; k++)
-            r->psi[k * m2 + i] = img[(size_t)i * L + k].r;
-    if ((st = flow_coeffs(r->flow, s, z, n, err)) != HL_OK)
-        goto done;
+    return HL_OK;
+}
+
+/* v_k = k! (psi_k - flow_k), their thresholds, the leading k and the order,
+ * from r->psi; the flow's coefficients by Taylor mode. */
+static int fields(hl_numerr *r, hl_system *sys, const double *z, hl_error *err)
+{
+    int m2 = 2 * r->N, n = r->n;
+    int st = flow_coeffs(r->flow, sys, z, n, err);
+    if (st != HL_OK)
+        return st;
     double fact = 1;
     for (int k = 0; k <= n; k++) {
         if (k > 0)
@@ -797,6 +798,27 @@ int hl_numerr_compute(hl_numerr *r, const hl_scheme *s, const double *z, int n, 
             r->leading = k;
     }
     r->order = r->leading ? r->leading - 1 : n;
+    return HL_OK;
+}
+
+int hl_numerr_compute(hl_numerr *r, const hl_scheme *s, const double *z, int n, hl_error *err)
+{
+    int st = numerr_start(r, s->sys, n, err);
+    if (st != HL_OK)
+        return st;
+    int m2 = 2 * s->N, L = n + 1 + SLACK;
+    dn *pt = calloc((size_t)m2 * L, sizeof *pt), *img = calloc((size_t)m2 * L, sizeof *img);
+    if (!pt || !img)
+        abort();
+    for (int i = 0; i < m2; i++)
+        pt[(size_t)i * L].r = z[i];
+    if ((st = run_scheme(img, s, pt, L, err)) != HL_OK)
+        goto done;
+    for (int i = 0; i < m2; i++)
+        for (int k = 0; k <= n; k++)
+            r->psi[k * m2 + i] = img[(size_t)i * L + k].r;
+    if ((st = fields(r, s->sys, z, err)) != HL_OK)
+        goto done;
     /* K: the scheme at w(D) + eps w'(D), w = psi_{-D}(z) */
     memset(pt, 0, (size_t)m2 * L * sizeof *pt);
     for (int i = 0; i < m2; i++)
@@ -815,4 +837,16 @@ done:
     free(pt);
     free(img);
     return st;
+}
+
+int hl_numerr_from_series(hl_numerr *r, hl_system *sys, const double *z, const double *psi,
+                          int n, hl_error *err)
+{
+    int st = numerr_start(r, sys, n, err);
+    if (st != HL_OK)
+        return st;
+    memcpy(r->psi, psi, (size_t)(n + 1) * 2 * r->N * sizeof *psi);
+    for (int i = 0; i < n * 2 * r->N; i++)
+        r->K[i] = NAN;
+    return fields(r, sys, z, err);
 }

@@ -8,6 +8,7 @@
 
 #include "cli/cli.h"
 #include "hamlie/analysis.h"
+#include "hamlie/exact.h"
 #include "hamlie/numerr.h"
 #include "hamlie/scheme.h"
 
@@ -813,6 +814,10 @@ static void write_numeric_text(hl_buf *out, const hl_numerr *nr, const double *z
                       nr->order, nr->n);
     hl_buf_puts(out, "round-off threshold for v_k: 1e-10 · k! · max_i(|[D^k] psi_i| + "
                      "|g^k z_i / k!|)\n");
+    if (isnan(nr->K[0])) {
+        hl_buf_puts(out, "K(D): not computed (it needs the scheme at other points than z)\n");
+        return;
+    }
     hl_buf_printf(out, "K(D) = (d/dD psi_D)(psi_{-D}(z)), coefficients to D^%d:\n", nr->n - 1);
     for (int k = 0; k < nr->n; k++) {
         hl_buf_printf(out, "  D^%d: ", k);
@@ -868,10 +873,11 @@ static void write_numeric_json(hl_buf *b, const hl_numerr *nr, const double *z, 
     hl_buf_puts(b, ", \"numeric_zero_test\": false, \"scheme\": {\"source\": ");
     hl_json_escape(b, r->scheme ? "catalog" : o->map ? "map" : "equations");
     hl_buf_puts(b, ", \"name\": ");
-    hl_json_escape(b, R->s->name);
+    hl_json_escape(b, R->s != NULL ? R->s->name : r->scheme);
     hl_buf_puts(b, ", \"input\": ");
     hl_json_escape(b, r->scheme ? r->scheme : o->map ? o->map : r->equations);
-    hl_buf_printf(b, ", \"explicit\": %s}, \"at\": ", R->s->all_explicit ? "true" : "false");
+    hl_buf_printf(b, ", \"explicit\": %s}, \"at\": ",
+                  R->s == NULL || R->s->all_explicit ? "true" : "false");
     json_num_vec(b, z, R);
     hl_buf_printf(b, ", \"order_computed\": %d, \"fields\": [", nr->n);
     for (int k = 2; k <= nr->n; k++) {
@@ -904,6 +910,31 @@ static void write_numeric_json(hl_buf *b, const hl_numerr *nr, const double *z, 
     hl_buf_puts(b, "]}\n");
 }
 
+/* --scheme exact for an H whose exact flow has no closed form here: the
+ * numeric exact scheme of exact.h (hl_exact_flow), analysed from its own
+ * series at the point. */
+static int numeric_exact(const result *R, const err_opts *r)
+{
+    return r->scheme != NULL && strcmp(r->scheme, "exact") == 0 &&
+           !hl_scheme_linear_flow_applies(R->sys);
+}
+
+static int exact_numerr(hl_numerr *nr, result *R, const double *z, hl_error *err)
+{
+    hl_exact_flow *f = NULL;
+    double *psi = hl_xmalloc((size_t)(R->n + 1) * R->m * sizeof *psi);
+    int st = hl_exact_flow_new(&f, R->sys, err);
+    if (st == HL_OK)
+        st = hl_exact_flow_series(psi, z, R->n, f, err);
+    if (st == HL_OK)
+        st = hl_numerr_from_series(nr, R->sys, z, psi, R->n, err);
+    if (st != HL_OK)
+        hl_error_prefix(err, "the exact scheme");
+    hl_exact_flow_free(f);
+    free(psi);
+    return st;
+}
+
 /* The whole --numeric path after the system is built: -1 on success with
  * the output in out, else the exit code. */
 static int run_numeric(hl_buf *out, result *R, const err_opts *r, const cli_opts *o,
@@ -915,11 +946,16 @@ static int run_numeric(hl_buf *out, result *R, const err_opts *r, const cli_opts
     hl_error_clear(&err);
     hl_numerr nr;
     memset(&nr, 0, sizeof nr);
-    if (rc < 0 && make_scheme(R, r, o, &err) != HL_OK)
-        rc = cli_fail(&err);
-    if (rc < 0 && hl_numerr_compute(&nr, R->s, z, R->n, &err) != HL_OK) {
-        hl_error_prefix(&err, "numeric analysis");
-        rc = cli_fail(&err);
+    if (rc < 0 && numeric_exact(R, r)) {
+        if (exact_numerr(&nr, R, z, &err) != HL_OK)
+            rc = cli_fail(&err);
+    } else {
+        if (rc < 0 && make_scheme(R, r, o, &err) != HL_OK)
+            rc = cli_fail(&err);
+        if (rc < 0 && hl_numerr_compute(&nr, R->s, z, R->n, &err) != HL_OK) {
+            hl_error_prefix(&err, "numeric analysis");
+            rc = cli_fail(&err);
+        }
     }
     if (rc < 0) {
         if (o->format == CLI_JSON)
@@ -960,7 +996,12 @@ int cmd_errors(int argc, char **argv)
         R.names = hl_xmalloc((size_t)R.m * sizeof *R.names);
         for (int i = 0; i < R.m; i++)
             R.names[i] = i < R.N ? hl_system_coord(R.sys, i) : hl_system_momentum(R.sys, i - R.N);
-        if (r.numeric) {
+        if (!r.numeric && numeric_exact(&R, &r))
+            rc = cli_usage(cmd, "the exact scheme of this H is numeric (action-angle by "
+                                "quadrature, exact.h): analyse it at a point with --numeric "
+                                "--at '%s=...,%s=...'",
+                           R.names[0], R.names[R.N]);
+        else if (r.numeric) {
             hl_buf out;
             hl_buf_init(&out);
             rc = run_numeric(&out, &R, &r, &o, cmd);

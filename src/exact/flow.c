@@ -455,7 +455,10 @@ static void two_sum(double *s, double *e, double a, double b)
     *s = x;
 }
 
-static int orbit_step(double *z, double dt, hl_exact_flow *f, hl_error *err)
+/* z's time since the turning point, th + tl in [0, T + Tlo) (double-double),
+ * building the table for z's energy if need be. */
+static int orbit_time(double *th, double *tl, const double *z, hl_exact_flow *f,
+                      hl_error *err)
 {
     double E = H_at(f, z);
     if (!isfinite(E))
@@ -465,17 +468,34 @@ static int orbit_step(double *z, double dt, hl_exact_flow *f, hl_error *err)
         if (st != HL_OK)
             return st;
     }
-    double th, tl = 0;
+    *tl = 0;
     if (f->have_last && z[0] == f->last[0] && z[1] == f->last[1]) {
-        th = f->lth;
-        tl = f->ltl;
-    } else {
-        th = locate(&tl, z, f);
-        if (th < 0)
-            two_sum(&th, &tl, th + f->T, tl + f->Tlo);
-        if (th >= f->T)
-            two_sum(&th, &tl, th - f->T, tl - f->Tlo);
+        *th = f->lth;
+        *tl = f->ltl;
+        return HL_OK;
     }
+    *th = locate(tl, z, f);
+    if (*th < 0)
+        two_sum(th, tl, *th + f->T, *tl + f->Tlo);
+    if (*th >= f->T)
+        two_sum(th, tl, *th - f->T, *tl - f->Tlo);
+    return HL_OK;
+}
+
+/* The table piece for time uh + ul in [0, T + Tlo), and the offset in it. */
+static const double *piece(double *s, double uh, double ul, const hl_exact_flow *f)
+{
+    long k = lround(uh / f->hs);
+    *s = fma(-(double)k, f->hs, uh) - k * f->hslo + ul;
+    return f->C + (size_t)(k % f->M) * 2 * NC;
+}
+
+static int orbit_step(double *z, double dt, hl_exact_flow *f, hl_error *err)
+{
+    double th, tl;
+    int st = orbit_time(&th, &tl, z, f, err);
+    if (st != HL_OK)
+        return st;
     /* u = t + (dt mod period), then once more mod period, in double-double */
     double uh, ul;
     two_sum(&uh, &ul, th, reduce(dt, f));
@@ -489,16 +509,61 @@ static int orbit_step(double *z, double dt, hl_exact_flow *f, hl_error *err)
     if (uh < 0) {
         two_sum(&uh, &ul, uh + f->T, ul + f->Tlo);
     }
-    long k = lround(uh / f->hs);
-    double s = fma(-(double)k, f->hs, uh) - k * f->hslo + ul;
-    k %= f->M;
-    poly_eval(z, NULL, f->C + (size_t)k * 2 * NC, s);
+    double s;
+    const double *c = piece(&s, uh, ul, f);
+    poly_eval(z, NULL, c, s);
     f->last[0] = z[0];
     f->last[1] = z[1];
     f->lth = uh;
     f->ltl = ul;
     f->have_last = 1;
     return HL_OK;
+}
+
+/* The step's series at z.  The scheme is a time shift along the tabulated
+ * orbit, psi_D(z) = orbit(t(z) + D), so its series is the orbit's Taylor
+ * series at the table's point for z's time, orbit(t(z)) = psi_0(z): what
+ * distinguishes it from the flow's series at z is that point.  (Shifting
+ * the table's polynomial piece to t(z) instead gives the same map, but as a
+ * series only to about D^11: the pieces have degree 20 and are centred at
+ * their samples.) */
+static int orbit_series(double *coef, const double *z, int n, hl_exact_flow *f, hl_error *err)
+{
+    double th, tl, s, w[2];
+    int st = orbit_time(&th, &tl, z, f, err);
+    if (st != HL_OK)
+        return st;
+    const double *c = piece(&s, th, tl, f);
+    poly_eval(w, NULL, c, s);
+    double *a = hl_xcalloc(2 * ((size_t)n + 1), sizeof *a);
+    a[0] = w[0];
+    a[n + 1] = w[1];
+    st = hl_tape_taylor_ode_d(a, n, f->vf, err);
+    for (int k = 0; k <= n && st == HL_OK; k++)
+        coef[k * 2] = a[k], coef[k * 2 + 1] = a[n + 1 + k];
+    free(a);
+    return st;
+}
+
+/* (A^k (z, 1))/k! with the augmented matrix: the series of exp(D A). */
+static void linear_series(double *coef, const double *z, int n, const hl_exact_flow *f)
+{
+    int m2 = 2 * f->N, m = m2 + 1;
+    double *x = hl_xmalloc(sizeof(double) * m), *y = hl_xmalloc(sizeof(double) * m);
+    memcpy(x, z, sizeof(double) * m2);
+    x[m2] = 1;
+    memcpy(coef, z, sizeof(double) * m2);
+    for (int k = 1; k <= n; k++) {
+        for (int i = 0; i < m; i++) {
+            double t = 0;
+            for (int j = 0; j < m; j++)
+                t += f->Aaug[i * m + j] * x[j];
+            y[i] = t / k;
+        }
+        memcpy(x, y, sizeof(double) * m);
+        memcpy(coef + (size_t)k * m2, x, sizeof(double) * m2);
+    }
+    free(x), free(y);
 }
 
 /* ---- public -------------------------------------------------------------- */
@@ -581,6 +646,17 @@ int hl_exact_flow_step(double *z, double dt, void *flow, hl_error *err)
         z[1] = w[1];
     }
     return st;
+}
+
+int hl_exact_flow_series(double *coef, const double *z, int n, hl_exact_flow *f, hl_error *err)
+{
+    if (n < 0)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "negative order %d", n);
+    if (f->linear) {
+        linear_series(coef, z, n, f);
+        return HL_OK;
+    }
+    return orbit_series(coef, z, n, f, err);
 }
 
 int hl_exact_flow_period(double *T, const double *z, hl_exact_flow *f, hl_error *err)
