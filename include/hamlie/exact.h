@@ -24,6 +24,8 @@
 #ifndef HAMLIE_EXACT_H
 #define HAMLIE_EXACT_H
 
+#include <arb.h>
+
 #include "hamlie/error.h"
 #include "hamlie/alg.h"
 #include "hamlie/ham.h"
@@ -86,6 +88,23 @@ int hl_exact_flow_is_linear(const hl_exact_flow *f);
 /* Period T(E) of the orbit through z (1-dof kind; the quadratic kind gives
  * HL_EUNSUP).  Builds the orbit table for that energy. */
 int hl_exact_flow_period(double *T, const double *z, hl_exact_flow *f, hl_error *err);
+
+/* ---- the 1-dof exact scheme in high precision --------------------------
+ * The period T(E) of the orbit through z in Arb at about `digits` digits
+ * (16..1000), and z advanced by dt of any size in the time of less than a
+ * period: psi_dt(z) = the Arb Taylor integrator (flow.h) over dt mod T.  T
+ * comes from Newton's method on the turning point (H(q,0) = E) and on
+ * p(T/2) = 0, started from the double exact flow's values (flow.c), and is
+ * kept for the energy of the last point.  Multiprecision floating point,
+ * not validated enclosures (as flow.h's Arb integrator).  HL_EUNSUP for
+ * N > 1 or a quadratic H (its exact scheme is a closed form); errors of the
+ * orbit as hl_exact_flow_step's. */
+typedef struct hl_exact_arb hl_exact_arb;
+
+int hl_exact_arb_new(hl_exact_arb **out, hl_system *sys, double digits, hl_error *err);
+void hl_exact_arb_free(hl_exact_arb *f); /* NULL is a no-op */
+int hl_exact_arb_period(arb_t T, arb_srcptr z, hl_exact_arb *f, hl_error *err);
+int hl_exact_arb_step(arb_ptr z, const arb_t dt, hl_exact_arb *f, hl_error *err);
 
 #ifdef __cplusplus
 }

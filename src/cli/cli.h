@@ -127,6 +127,9 @@ char *cli_show_input(const char *text, hl_system *sys, cli_format f);
 /* Name of the image of phase variable a in a map: x -> X, px -> PX. */
 char *cli_image_name(hl_system *sys, int a);
 
+/* x's midpoint with ndig significant digits (arb_get_str, no radius). */
+void cli_put_arb(hl_buf *b, const arb_struct *x, long ndig);
+
 int cmd_generator(int argc, char **argv);
 int cmd_bracket(int argc, char **argv);
 int cmd_check(int argc, char **argv);

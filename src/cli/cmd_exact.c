@@ -14,7 +14,7 @@
 
 /* The command's own options (taken out of argv before cli_parse). */
 static struct {
-    const char *init, *aa, *dt;
+    const char *init, *aa, *dt, *digits;
     int steps;
 } ex;
 
@@ -50,6 +50,9 @@ const char cmd_exact_help[] =
     "  --init q=..,p=..     1 dof, H not quadratic: the numeric exact scheme by\n"
     "                       the orbit (period T, frequency 2 pi/T) and 8 steps\n"
     "                       of --dt (default 0.5) against the Taylor integrator\n"
+    "  --digits D           with --init: the same in Arb at D digits (16..1000):\n"
+    "                       the period, 8 steps (each integrates D mod T), against\n"
+    "                       the Arb integrator carried over the whole 8 D\n"
     "\n"
     "Exit status: 0 printed and every check holds; 1 a check fails (a wrong\n"
     "action-angle map: the failing condition is named); 2 usage or input\n"
@@ -563,6 +566,73 @@ static int run_steps(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, 
     return st;
 }
 
+/* --init with --digits: the same in Arb (exact.h: hl_exact_arb), against
+ * the Arb integrator carried over the whole time and the double scheme. */
+static int run_numeric_arb(hl_buf *out, int *code, hl_system *sys, double dt,
+                           const double *zd8, hl_error *err)
+{
+    char *end;
+    double digits = strtod(ex.digits, &end);
+    if (*end || !(digits >= 16 && digits <= 1000))
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "--digits must be from 16 to 1000");
+    hl_exact_arb *f = NULL;
+    int st = hl_exact_arb_new(&f, sys, digits, err);
+    if (st != HL_OK)
+        return st;
+    slong prec = (slong)ceil(digits * log2(10.0)) + 32;
+    arb_ptr z = _arb_vec_init(2), w = _arb_vec_init(2);
+    arb_t T, h, t, t1, d;
+    arb_init(T), arb_init(h), arb_init(t), arb_init(t1), arb_init(d);
+    st = hl_run_init_values_arb(z, sys, ex.init, prec, err);
+    if (st == HL_OK)
+        st = hl_exact_arb_period(T, z, f, err);
+    int nd = (int)digits;
+    if (st == HL_OK) {
+        hl_buf_printf(out, "in Arb at %d digits: period T = ", nd);
+        cli_put_arb(out, T, nd);
+        hl_buf_puts(out, "\n");
+    }
+    _arb_vec_set(w, z, 2);
+    arb_set_d(h, dt);
+    for (int n = 1; n <= 8 && st == HL_OK; n++)
+        st = hl_exact_arb_step(z, h, f, err);
+    /* the Arb integrator over the whole 8 dt (the check of the reduction mod T) */
+    hl_tape *vf = NULL;
+    hl_flow_arb *fa = NULL;
+    const char *q = hl_system_coord(sys, 0), *p = hl_system_momentum(sys, 0);
+    if (st == HL_OK)
+        st = hl_tape_hamiltonian(&vf, hl_system_pool(sys), hl_system_H_expr(sys), 1, &q, &p, 0,
+                                 NULL, NULL, err);
+    if (st == HL_OK)
+        st = hl_flow_arb_new(&fa, vf, digits, err);
+    arb_mul_si(t1, h, 8, prec);
+    if (st == HL_OK)
+        st = hl_flow_arb_evolve(fa, t, t1, w, err);
+    if (st == HL_OK) {
+        double dmax = 0, ddouble = 0;
+        hl_buf_printf(out, "after 8 exact steps of D = %g in Arb:", dt);
+        for (int i = 0; i < 2; i++) {
+            char *nm = cli_image_name(sys, i);
+            hl_buf_printf(out, " %s = ", nm);
+            cli_put_arb(out, z + i, nd);
+            free(nm);
+            arb_sub(d, z + i, w + i, prec);
+            dmax = fmax(dmax, fabs(arf_get_d(arb_midref(d), ARF_RND_NEAR)));
+            ddouble = fmax(ddouble, fabs(zd8[i] - arf_get_d(arb_midref(z + i), ARF_RND_NEAR)));
+        }
+        hl_buf_printf(out, "\nmax difference from the Arb integrator over t = %g: %.3g\n",
+                      8 * dt, dmax);
+        hl_buf_printf(out, "max difference of the double exact scheme from it: %.3g\n", ddouble);
+        *code = dmax < pow(10.0, 5 - digits) * 8 * fmax(1.0, fabs(dt)) ? CLI_OK : CLI_FAILS;
+    }
+    hl_flow_arb_free(fa);
+    hl_tape_free(vf);
+    hl_exact_arb_free(f);
+    _arb_vec_clear(z, 2), _arb_vec_clear(w, 2);
+    arb_clear(T), arb_clear(h), arb_clear(t), arb_clear(t1), arb_clear(d);
+    return st;
+}
+
 /* 1 dof, not quadratic: the orbit's period and a few steps against the
  * Taylor integrator. */
 static int run_numeric(hl_buf *out, int *code, hl_system *sys, const cli_opts *o,
@@ -628,6 +698,12 @@ static int run_numeric(hl_buf *out, int *code, hl_system *sys, const cli_opts *o
                       maxd);
         *code = maxd < 1e-11 ? CLI_OK : CLI_FAILS;
     }
+    if (st == HL_OK && ex.digits != NULL) {
+        int c2 = CLI_OK;
+        st = run_numeric_arb(out, &c2, sys, dt, z, err);
+        if (c2 != CLI_OK)
+            *code = c2;
+    }
     hl_flow_free(fl);
     hl_tape_free(tape);
     hl_exact_flow_free(f);
@@ -686,20 +762,22 @@ static void found_opt(void *arg, int k, const char *value)
         ex.aa = value;
     else if (k == 2)
         ex.dt = value;
-    else
+    else if (k == 3)
         ex.steps = 1;
+    else
+        ex.digits = value;
 }
 
 int cmd_exact(int argc, char **argv)
 {
     static const cli_spec spec = {"exact", CLI_OPT_H | CLI_OPT_ORDER, check, run};
     static const cli_own own[] = {
-        {"--init", 0}, {"--action-angle", 0}, {"--dt", 0}, {"--steps", 1}};
+        {"--init", 0}, {"--action-angle", 0}, {"--dt", 0}, {"--steps", 1}, {"--digits", 0}};
     memset(&ex, 0, sizeof ex);
     char **av = hl_xmalloc((size_t)(argc + 1) * sizeof *av);
     memcpy(av, argv, (size_t)(argc + 1) * sizeof *av);
     int ac = argc;
-    int rc = cli_take_own(&ac, av, own, 4, found_opt, NULL, cli_find("exact"));
+    int rc = cli_take_own(&ac, av, own, 5, found_opt, NULL, cli_find("exact"));
     if (rc < 0)
         rc = cli_main(ac, av, &spec);
     free(av);

@@ -661,13 +661,6 @@ typedef struct csv_arb {
     long ndig;
 } csv_arb;
 
-static void arb_field(hl_buf *b, const arb_struct *x, long ndig)
-{
-    char *str = arb_get_str(x, ndig, ARB_STR_NO_RADIUS);
-    hl_buf_puts(b, str);
-    flint_free(str);
-}
-
 static int csv_row_arb(const hl_run_row_arb *row, void *arg)
 {
     csv_arb *ca = arg;
@@ -676,16 +669,16 @@ static int csv_row_arb(const hl_run_row_arb *row, void *arg)
     if (c->fp == NULL)
         return 0;
     hl_buf *b = &c->buf;
-    arb_field(b, row->t, ca->ndig);
+    cli_put_arb(b, row->t, ca->ndig);
     for (int i = 0; i < c->n2; i++) {
         hl_buf_putc(b, ',');
-        arb_field(b, row->z + i, ca->ndig);
+        cli_put_arb(b, row->z + i, ca->ndig);
     }
     hl_buf_putc(b, ',');
-    arb_field(b, row->H, ca->ndig);
+    cli_put_arb(b, row->H, ca->ndig);
     for (int i = 0; i < c->nobs; i++) {
         hl_buf_putc(b, ',');
-        arb_field(b, row->obs + i, ca->ndig);
+        cli_put_arb(b, row->obs + i, ca->ndig);
     }
     hl_buf_putc(b, '\n');
     c->rows++;

@@ -234,3 +234,10 @@ int cli_begin(char ***av, cli_opts *o, hl_system **sys, int argc, char **argv,
     }
     return rc;
 }
+
+void cli_put_arb(hl_buf *b, const arb_struct *x, long ndig)
+{
+    char *str = arb_get_str(x, ndig, ARB_STR_NO_RADIUS);
+    hl_buf_puts(b, str);
+    flint_free(str);
+}

@@ -19,6 +19,7 @@
 #include "hamlie/tape.h"
 #include "hamlie/flow.h"
 #include "base/buf.h"
+#include "exact/exact_impl.h"
 
 #define ORD 20 /* Taylor order of the table polynomials */
 #define NC (ORD + 1)
@@ -40,11 +41,16 @@ struct hl_exact_flow {
     double *C; /* M samples x 2 variables x NC coefficients */
 };
 
-static double H_at(hl_exact_flow *f, const double *z)
+static double H_tape(hl_tape *Ht, const double *z)
 {
     double h;
-    hl_tape_eval_d(&h, z, f->Ht);
+    hl_tape_eval_d(&h, z, Ht);
     return h;
+}
+
+static double H_at(hl_exact_flow *f, const double *z)
+{
+    return H_tape(f->Ht, z);
 }
 
 /* ---- linear ------------------------------------------------------------ */
@@ -177,18 +183,16 @@ static double jz_step(const double *c, const double *z)
     return h * exp(-0.7 / (ORD - 1));
 }
 
-/* Right turning point: the first q > q0 with H(q,0) = E, by doubling steps
- * then bisection.  HL_EDOM if none within a large range. */
-static int turning_point(double *qt, double q0, double E, hl_exact_flow *f, hl_error *err)
+int hl_exact_turning_point_(double *qt, double q0, double E, hl_tape *Ht, hl_error *err)
 {
     double a = q0, step = 1e-3 * (1 + fabs(q0)), b;
     double z[2] = {q0, 0};
-    if (H_at(f, z) > E) /* q0 itself beyond: p != 0 means V(q0) < E */
+    if (H_tape(Ht, z) > E) /* q0 itself beyond: p != 0 means V(q0) < E */
         return hl_error_set(err, HL_EDOM, NULL, -1, 0, "no turning point: H(q,0) > E at q");
     for (;;) {
         b = a + step;
         z[0] = b;
-        double h = H_at(f, z);
+        double h = H_tape(Ht, z);
         if (!isfinite(h))
             return hl_error_set(err, HL_EDOM, NULL, -1, 0,
                                 "H is not finite at q = %g before the turning point", b);
@@ -206,7 +210,7 @@ static int turning_point(double *qt, double q0, double E, hl_exact_flow *f, hl_e
         if (c <= a || c >= b)
             break;
         z[0] = c;
-        if (H_at(f, z) > E)
+        if (H_tape(Ht, z) > E)
             b = c;
         else
             a = c;
@@ -313,7 +317,7 @@ static int sample_half(double *zs, double qt, double T, double Tlo, int M, hl_ex
 static int build_table(hl_exact_flow *f, const double *z0, hl_error *err)
 {
     double E = H_at(f, z0), qt = 0, z[2], c[2 * NC], dz[2];
-    int st = turning_point(&qt, z0[0], E, f, err);
+    int st = hl_exact_turning_point_(&qt, z0[0], E, f->Ht, err);
     if (st != HL_OK)
         return st;
     z[0] = qt;
