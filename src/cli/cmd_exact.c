@@ -25,6 +25,9 @@ const char cmd_exact_help[] =
     "the phase variables (any number of uncoupled pairs; parameters allowed):\n"
     "per pair cos and sin of w D (cosh and sinh when w^2 < 0, polynomials when\n"
     "w^2 = 0), w^2 = H_qq H_pp - H_qp^2, with the terms of a uniform field.\n"
+    "Coupled pairs (rational coefficients): the same per normal mode, when\n"
+    "the minimal polynomial of A^2 is squarefree with real roots and factors\n"
+    "of degree <= 2 (A = J Hess H).\n"
     "Then check that it is the flow:\n"
     "  - its expansion in D equals the Lie series exp(D g) z to D^N (so every\n"
     "    error field v_2..v_N vanishes);\n"
@@ -56,7 +59,8 @@ const char cmd_exact_help[] =
     "\n"
     "Exit status: 0 printed and every check holds; 1 a check fails (a wrong\n"
     "action-angle map: the failing condition is named); 2 usage or input\n"
-    "error (H not quadratic without --init, pairs coupled, unbounded orbit).\n"
+    "error (H not quadratic without --init, coupled pairs without a closed\n"
+    "form, unbounded orbit).\n"
     "Example: hamlie exact -H '(px^2+py^2)/2+(x^2+4*y^2)/2'\n"
     "Example: hamlie exact -H 'p^2/2 - cos(q)' --init q=1.3,p=0\n";
 

@@ -61,8 +61,8 @@ static const entry catalog[] = {
       S_SYMP | S_H | S_OSC},
      "Q = q*cos(D) + p*sin(D); P = p*cos(D) - q*sin(D)"},
     {{"exact",
-      "the exact flow in closed form, for H quadratic in the phase variables with "
-      "uncoupled pairs (any N; parameters allowed)",
+      "the exact flow in closed form, for H quadratic in the phase variables (any N; "
+      "parameters allowed in uncoupled pairs; coupled pairs by normal modes)",
       HL_SCHEME_EXACT, S_SYMP | S_H | S_QUAD},
      NULL},
     {{"paper-euler", "the paper's Euler method: (Q-q)/D = Hp(q, p), (P-p)/D = -Hq(q, p)", 1, 0},

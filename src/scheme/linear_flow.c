@@ -1,6 +1,7 @@
 /* The exact flow of a Hamiltonian whose field is affine, z' = A z + g (H a
  * polynomial of degree <= 2 in the phase variables; coefficients may be
- * parameters), in closed form, for pairs (q_j, p_j) that H does not couple.
+ * parameters), in closed form, for pairs (q_j, p_j) that H does not couple
+ * (a coupled H goes to linear_modes.c: normal modes).
  *
  * In one pair, A = [[a, b], [c, -a]] with a = H_qp, b = H_pp, c = -H_qq has
  * trace 0, so A^2 = -w2 I with w2 = H_qq H_pp - H_qp^2, and
@@ -16,6 +17,7 @@
 
 #include "base/buf.h"
 #include "hamlie/scheme.h"
+#include "scheme/scheme_impl.h"
 
 /* a as text that reads back (expr.h's printer of alg.h's form). */
 static char *text_of(const hl_alg *a, hl_system *sys)
@@ -188,17 +190,13 @@ int hl_scheme_linear_flow(hl_alg *images, hl_system *sys, hl_error *err)
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     int N = hl_system_ndof(sys), M = 2 * N;
     hl_alg *hess = hl_alg_vec_new(M * M, ctx), *g0 = hl_alg_vec_new(M, ctx);
-    int st = hessian(hess, g0, sys, err), other = -1;
-    for (int j = 0; j < N && st == HL_OK; j++) {
-        if (coupled(&other, hess, j, sys)) {
-            st = hl_error_set(err, HL_EUNSUP, NULL, -1, 0,
-                              "H couples the pairs of %s and %s: the closed form here is for "
-                              "uncoupled pairs",
-                              hl_system_coord(sys, j), hl_system_coord(sys, other));
-            break;
-        }
+    int st = hessian(hess, g0, sys, err), other = -1, any = 0;
+    for (int j = 0; j < N && st == HL_OK && !any; j++)
+        any = coupled(&other, hess, j, sys);
+    if (any) /* normal modes (linear_modes.c) */
+        st = scheme_linear_modes(images, hess, g0, sys, err);
+    for (int j = 0; j < N && st == HL_OK && !any; j++)
         st = pair_images(&images[j], &images[N + j], j, hess, g0, sys, err);
-    }
     hl_alg_vec_free(hess, M * M, ctx);
     hl_alg_vec_free(g0, M, ctx);
     return st;

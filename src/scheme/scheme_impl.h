@@ -46,4 +46,10 @@ const hl_expr *scheme_dH(hl_system *sys, int j, int wrt_p);
 /* The system's point as symbols: v[j] = q_j, v[N + j] = p_j. */
 void scheme_point(const hl_expr **v, hl_system *sys);
 
+/* The exact flow of a quadratic H that couples its pairs, in closed form
+ * (linear_modes.c): hess (2N x 2N) and g0 (2N) are H's Hessian and its
+ * gradient at 0; HL_EUNSUP, naming the reason, where no closed form is made. */
+int scheme_linear_modes(hl_alg *images, const hl_alg *hess, const hl_alg *g0, hl_system *sys,
+                        hl_error *err);
+
 #endif

@@ -2,7 +2,8 @@
 # hamlie exact, and the catalog's 'exact' through run and errors: the closed
 # form against flows solved by hand (sympy compares), the three checks
 # reported true, every error field zero, a run at round-off against the
-# Taylor reference; H not quadratic and coupled pairs refused (exit 2).
+# Taylor reference; coupled pairs in closed form against mpmath's expm; H
+# not quadratic, cubic normal modes and symbolic couplings refused (exit 2).
 # usage (from the repo root): bash tests/cli/exact.sh path/to/hamlie
 set -u
 HAMLIE=${1:?usage: exact.sh path/to/hamlie}
@@ -27,8 +28,11 @@ py 'assert same(d["map"]["Q"], "q + D*p - g*D**2/2") and same(d["map"]["P"], "p 
 
 run 2 exact -H 'p^2/2 - cos(q)'
 err_has "not quadratic"
-run 2 exact -H '(px^2+py^2)/2 + (x^2+y^2)/2 + x*y'
-err_has "couples the pairs of x and y"
+# coupled pairs whose normal-mode frequencies are roots of a cubic: refused
+run 2 exact -H '(px^2+py^2+pz^2)/2 + (x^2+2*y^2+4*z^2)/2 + x*y + y*z + x*z'
+err_has "irreducible polynomial of degree 3"
+run 2 exact -H '(px^2+py^2)/2 + (x^2+y^2)/2 + k*x*y'
+err_has "couples the pairs of x and y and has symbolic coefficients"
 run 2 exact -H "$ANISO" --order 0
 err_has "--order must be from 1 to 40"
 
@@ -89,5 +93,38 @@ d = float(re.search(r"integrator \(tol 1e-15\): (\S+)", t).group(1)); assert d <
     ok || bad "pendulum period or steps: $(cat "$tmp/out")"
 run 2 exact -H 'p^2/2 - cos(q)' --init q=0,p=2.5
 err_has "unbounded orbit"
+
+# issue 6: coupled pairs in closed form (linear_modes.c), frequencies
+# sqrt((5 +- sqrt 13)/2): the three checks hold, and the printed map equals
+# mpmath's expm(D A) z at a point
+COUPLED='(px^2+py^2)/2+(x^2+4*y^2)/2 + x*y'
+run 0 exact -H "$COUPLED"
+has_line 'equals exp(D g) z to D^8 (v_2..v_8 vanish): yes'
+has_line 'canonical: yes'
+has_line 'two steps of D = one step of 2D: yes'
+has_text 'sqrt(13)'
+run 0 exact -H "$COUPLED + x - py/3" --json
+py 'import mpmath
+mpmath.mp.dps = 30
+A = mpmath.matrix([[0, 0, 1, 0, 0], [0, 0, 0, 1, -mpmath.mpf(1)/3], [-1, -1, 0, 0, -1],
+                   [-1, -4, 0, 0, 0], [0, 0, 0, 0, 0]])
+pt = {"x": (3, 10), "y": (-7, 10), "px": (9, 20), "py": (11, 10), "D": (17, 10)}
+f = {n: mpmath.mpf(a) / b for n, (a, b) in pt.items()}
+E = mpmath.expm(A * f["D"])
+w = E * mpmath.matrix([f["x"], f["y"], f["px"], f["py"], 1])
+for i, k in enumerate(["X", "Y", "PX", "PY"]):
+    v = S(d["map"][k]).subs({loc[n]: Rational(a, b) for n, (a, b) in pt.items()}).evalf(30)
+    assert abs(v - w[i]) < 1e-20, (k, v, w[i])'
+# rational frequencies 1 and 3: no square root at all
+run 0 exact -H '(px^2+py^2)/2 + (5*x^2+5*y^2)/2 + 4*x*y'
+has_text 'cos(3*D)'
+if grep -q sqrt "$tmp/out"; then bad "sqrt printed for rational frequencies"; else ok; fi
+# the catalog's exact on a coupled H: every error field zero, a run at round-off
+run 0 errors -H "$COUPLED" --scheme exact --order 4
+has_line 'v_4 = 0'
+run 0 run -H "$COUPLED" --scheme exact --dt 0.5 --t 100 --init x=1,y=0.3,px=0,py=0.2 --json
+python3 -c 'import json, sys; d = json.load(open(sys.argv[1]))
+assert d["max_error"] < 1e-11 and d["max_abs_dH"] < 1e-11, d' "$tmp/out" && ok ||
+    bad "coupled exact run not at round-off: $(cat "$tmp/out")"
 
 finish
