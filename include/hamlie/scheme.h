@@ -157,8 +157,11 @@ int hl_scheme_compose(hl_scheme **out, const char *name, const char *text, int r
  * degree <= 2 in the phase variables; parameters allowed) and H couples no
  * two pairs: per pair cos/sin of sqrt(w2) D, cosh/sinh for a rational
  * w2 < 0, polynomials for w2 = 0 (w2 = H_qq H_pp - H_qp^2).  images: 2N
- * elements (Q_1..Q_N, P_1..P_N).  HL_EINVAL when H is not quadratic,
- * HL_EUNSUP when it couples pairs (the message names them).
+ * elements (Q_1..Q_N, P_1..P_N).  Coupled pairs with rational coefficients:
+ * per normal mode (spectral projectors of A^2, A = J Hess H, when its
+ * minimal polynomial is squarefree with real roots and factors of degree
+ * <= 2; the coefficients a + b sqrt(d)).  HL_EINVAL when H is not
+ * quadratic, HL_EUNSUP (the reason named) for coupled pairs otherwise.
  * _map writes the same as a map "x' = ...; p' = ..." (hl_scheme_from_map
  * reads it back); *map is malloc'd. */
 int hl_scheme_linear_flow(hl_alg *images, hl_system *sys, hl_error *err);
