@@ -18,9 +18,8 @@ struct hl_scheme_stepper {
                      * their subexpressions (sin and cos of a midpoint) */
     hl_tape *start; /* z, D -> the Newton starting point U0 */
     hl_tape *after; /* z, D, U -> the next point (eliminated unknowns too) */
-    double *in, *out, *U, *A, *b, *dinv;
-    int *piv;
-    double last_ratio; /* last correction / the one before (Newton) */
+    double *in, *out, *U;
+    hl_newton *nw;  /* the solve of the implicit equations (tape.h) */
 };
 
 void hl_scheme_stepper_free(hl_scheme_stepper *st)
@@ -31,8 +30,8 @@ void hl_scheme_stepper_free(hl_scheme_stepper *st)
     hl_tape_free(st->jac);
     hl_tape_free(st->start);
     hl_tape_free(st->after);
-    free(st->in), free(st->out), free(st->U), free(st->A), free(st->b), free(st->dinv);
-    free(st->piv);
+    hl_newton_free(st->nw);
+    free(st->in), free(st->out), free(st->U);
     free(st);
 }
 
@@ -42,7 +41,6 @@ void hl_scheme_stepper_restart(hl_scheme_stepper *st, long steps)
 {
     st->steps = steps;
     st->iters = 0;
-    st->last_ratio = 0;
 }
 
 /* Each step evaluates the step tape once (explicit) or the residual and
@@ -57,12 +55,25 @@ static int jit_if_it_pays(hl_tape *t, long evaluations)
     return hl_tape_jit_active(t);
 }
 
+/* Steps from which the compiled Newton solve pays for its compilation:
+ * 80-150 ms for the implicit schemes on one degree of freedom (with the
+ * tape of the next point), 400 ms for gauss3 on two; it saves 20-60 ns a
+ * step (pendulum: implicit midpoint 121 -> 100 ns, gauss2 225 -> 160). */
+#define NEWTON_JIT_MIN_STEPS 3000000
+
 int hl_scheme_stepper_jit(hl_scheme_stepper *st, long nsteps)
 {
     if (!hl_tape_jit_available())
         return 0;
-    return jit_if_it_pays(st->tape, nsteps) + jit_if_it_pays(st->jac, nsteps) +
-           jit_if_it_pays(st->start, nsteps) + jit_if_it_pays(st->after, nsteps);
+    if (st->all_explicit)
+        return jit_if_it_pays(st->tape, nsteps);
+    int n = jit_if_it_pays(st->after, nsteps);
+    if (!hl_newton_jit_active(st->nw) && nsteps >= NEWTON_JIT_MIN_STEPS)
+        hl_newton_jit(st->nw, NULL); /* on failure the interpreter goes on */
+    if (hl_newton_jit_active(st->nw))
+        return n + 3; /* start, F and FJ, in one function */
+    return n + jit_if_it_pays(st->tape, nsteps) + jit_if_it_pays(st->jac, nsteps) +
+           jit_if_it_pays(st->start, nsteps);
 }
 
 /* x exactly, as a rational (a double is a dyadic rational). */
@@ -352,6 +363,8 @@ static int compile_newton(hl_scheme_stepper *st, const hl_scheme *s, const hl_ex
     }
     if (rc == HL_OK)
         rc = hl_tape_new(&st->start, outs, mk, inputs, nz, err);
+    if (rc == HL_OK)
+        rc = hl_newton_new(&st->nw, st->start, st->tape, st->jac, HL_SCHEME_NEWTON_MAX, err);
     st->m = mk;
     free(outs), free(val), free(gone), free(keep), free(names), free(vals);
     return rc;
@@ -389,61 +402,8 @@ int hl_scheme_stepper_new(hl_scheme_stepper **out, const hl_scheme *s, hl_error 
     st->in = hl_xmalloc((size_t)st->nin * sizeof *st->in);
     st->out = hl_xmalloc((size_t)(m + m * m + 2 * N) * sizeof *st->out); /* F and J */
     st->U = hl_xmalloc((size_t)m * sizeof *st->U);
-    st->A = hl_xmalloc((size_t)(m * m + 1) * sizeof *st->A);
-    st->b = hl_xmalloc((size_t)(m + 1) * sizeof *st->b);
-    st->dinv = hl_xmalloc((size_t)(m + 1) * sizeof *st->dinv);
-    st->piv = hl_xmalloc((size_t)(m + 1) * sizeof *st->piv);
     *out = st;
     return HL_OK;
-}
-
-/* A = LU in place with partial pivoting (piv: the row swaps; dinv: the
- * reciprocals of U's diagonal, so that solving multiplies: a division
- * costs several multiplications and lies on the solve's critical path);
- * 0 if singular. */
-static int lu_factor(double *A, int *piv, double *dinv, int m)
-{
-    for (int c = 0; c < m; c++) {
-        int r = c;
-        for (int i = c + 1; i < m; i++)
-            if (fabs(A[i * m + c]) > fabs(A[r * m + c]))
-                r = i;
-        piv[c] = r;
-        if (!(fabs(A[r * m + c]) > 0))
-            return 0;
-        if (r != c)
-            for (int j = 0; j < m; j++) {
-                double t = A[r * m + j];
-                A[r * m + j] = A[c * m + j], A[c * m + j] = t;
-            }
-        dinv[c] = 1 / A[c * m + c];
-        for (int i = c + 1; i < m; i++) {
-            double f = A[i * m + c] *= dinv[c];
-            if (f != 0)
-                for (int j = c + 1; j < m; j++)
-                    A[i * m + j] -= f * A[c * m + j];
-        }
-    }
-    return 1;
-}
-
-/* b = A^{-1} b with the factors of lu_factor. */
-static void lu_apply(const double *A, const int *piv, const double *dinv, double *b, int m)
-{
-    for (int c = 0; c < m; c++) {
-        if (piv[c] != c) {
-            double t = b[piv[c]];
-            b[piv[c]] = b[c], b[c] = t;
-        }
-        for (int i = c + 1; i < m; i++)
-            b[i] -= A[i * m + c] * b[c];
-    }
-    for (int i = m - 1; i >= 0; i--) {
-        double s = b[i];
-        for (int j = i + 1; j < m; j++)
-            s -= A[i * m + j] * b[j];
-        b[i] = s * dinv[i];
-    }
 }
 
 static int all_finite(const double *x, int n)
@@ -454,73 +414,36 @@ static int all_finite(const double *x, int n)
     return 1;
 }
 
-/* Simplified Newton: the Jacobian is evaluated and factored at the start
- * and again only when the corrections stop shrinking fast (ratio > 1/4). */
+/* Newton (tape.h: hl_newton) from (z, D) in st->in; the messages name the
+ * step and the time. */
 static int newton(hl_scheme_stepper *st, double D, double t, hl_error *err)
 {
-    int m = st->m, N = st->N;
-    double *in = st->in, *U = st->U, *A = st->A, *b = st->b, *out = st->out;
-    hl_tape_eval_d(U, in, st->start);
-    if (!all_finite(U, m))
+    double last;
+    hl_newton_status ns = hl_newton_solve(st->U, &st->iters, &last, st->in, st->nw);
+    long k = st->steps + 1;
+    switch (ns) {
+    case HL_NEWTON_OK:
+        return HL_OK;
+    case HL_NEWTON_START:
         return hl_error_set(err, HL_EDOM, NULL, -1, 0,
-                            "step %ld (t = %.17g, D = %g): the starting point is not finite",
-                            st->steps + 1, t, D);
-    double last = INFINITY;
-    int fresh = 0; /* the factored Jacobian is at the current iterate */
-    for (st->iters = 1; st->iters <= HL_SCHEME_NEWTON_MAX; st->iters++) {
-        memcpy(in + 2 * N + 1, U, (size_t)m * sizeof *U);
-        if (st->iters == 1 || (!fresh && last < INFINITY && st->last_ratio > 0.25)) {
-            hl_tape_eval_d(out, in, st->jac); /* F, then the Jacobian */
-            memcpy(A, out + m, (size_t)(m * m) * sizeof *A);
-            if (!all_finite(A, m * m))
-                break;
-            if (!lu_factor(A, st->piv, st->dinv, m))
-                return hl_error_set(err, HL_ENOCONV, NULL, -1, 0,
-                                    "step %ld (t = %.17g, D = %g): the Jacobian of the "
-                                    "scheme's equations is singular (Newton iteration %d)",
-                                    st->steps + 1, t, D, st->iters);
-            fresh = 1;
-        } else {
-            hl_tape_eval_d(out, in, st->tape);
-            fresh = 0;
-        }
-        if (!all_finite(out, m))
-            break;
-        for (int i = 0; i < m; i++)
-            b[i] = -out[i];
-        lu_apply(A, st->piv, st->dinv, b, m);
-        double dn = 0, un = 1;
-        for (int i = 0; i < m; i++) {
-            U[i] += b[i];
-            double ab = fabs(b[i]), au = fabs(U[i]);
-            dn = ab > dn ? ab : dn;
-            un = au > un ? au : un;
-        }
-        if (!all_finite(U, m))
-            break;
-        double theta = last < INFINITY && last > 0 ? dn / last : 0;
-        st->last_ratio = theta;
-        /* converged: the correction is at rounding level; or the corrections
-         * are tiny and no longer shrink (rounding in F itself: the Gonzalez
-         * remainder R is a difference of O(1) terms that is O(D^3)).  Not on
-         * an estimate of the error left from the contraction theta: that
-         * stops one iteration early, and the discrete gradients' H then
-         * drifts 100x faster (AVF on the pendulum, D = 0.1, 1e4 steps:
-         * 3e-13 against 4e-15) */
-        double tol = 4 * DBL_EPSILON * un;
-        if (dn <= tol || (dn <= 1e-12 * un && theta >= 0.5))
-            return HL_OK;
-        last = dn;
-    }
-    if (st->iters > HL_SCHEME_NEWTON_MAX)
+                            "step %ld (t = %.17g, D = %g): the starting point is not finite", k,
+                            t, D);
+    case HL_NEWTON_SINGULAR:
+        return hl_error_set(err, HL_ENOCONV, NULL, -1, 0,
+                            "step %ld (t = %.17g, D = %g): the Jacobian of the scheme's "
+                            "equations is singular (Newton iteration %d)",
+                            k, t, D, st->iters);
+    case HL_NEWTON_NOCONV:
         return hl_error_set(err, HL_ENOCONV, NULL, -1, 0,
                             "step %ld (t = %.17g, D = %g): Newton did not converge in %d "
                             "iterations (last correction %.3g)",
-                            st->steps + 1, t, D, HL_SCHEME_NEWTON_MAX, last);
-    return hl_error_set(err, HL_EDOM, NULL, -1, 0,
-                        "step %ld (t = %.17g, D = %g): Newton met a value that is not finite "
-                        "(iteration %d)",
-                        st->steps + 1, t, D, st->iters);
+                            k, t, D, HL_SCHEME_NEWTON_MAX, last);
+    default:
+        return hl_error_set(err, HL_EDOM, NULL, -1, 0,
+                            "step %ld (t = %.17g, D = %g): Newton met a value that is not "
+                            "finite (iteration %d)",
+                            k, t, D, st->iters);
+    }
 }
 
 int hl_scheme_step(hl_scheme_stepper *st, double *z, double D, double t, hl_error *err)

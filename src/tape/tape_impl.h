@@ -65,6 +65,17 @@ struct hl_tape {
     arb_t tmp[4];           /* scratch for the Arb recurrences */
 };
 
+/* newton.c: hl_newton */
+typedef int (*hl_newton_jit_fn)(const double *x, double *U, int *iters, double *last);
+struct hl_newton {
+    hl_tape *start, *F, *FJ; /* borrowed */
+    int nx, m, max_iter;
+    double *in, *out, *A, *b, *dinv;
+    int *piv;
+    void *jit_result;        /* hl_newton_jit: the gcc_jit_result and its entry */
+    hl_newton_jit_fn jit_fn;
+};
+
 /* eval.c */
 void hl_tape_run_d(const hl_instr *code, int n, double *r);
 void hl_tape_run_arb(const hl_instr *code, int n, arb_ptr r, slong prec);
