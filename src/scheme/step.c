@@ -57,9 +57,11 @@ static int jit_if_it_pays(hl_tape *t, long evaluations)
 
 /* Steps from which the compiled Newton solve pays for its compilation:
  * 80-150 ms for the implicit schemes on one degree of freedom (with the
- * tape of the next point), 400 ms for gauss3 on two; it saves 20-60 ns a
- * step (pendulum: implicit midpoint 121 -> 100 ns, gauss2 225 -> 160). */
-#define NEWTON_JIT_MIN_STEPS 3000000
+ * tape of the next point), 400 ms for gauss3 on two.  In a run it saves
+ * the interpreter and the calls, about 80 ns a step: the implicit midpoint
+ * rule's 10^6 pendulum steps take 227 ms with the compilation, 223 ms
+ * without (bench/run_fixed.c). */
+#define NEWTON_JIT_MIN_STEPS 1000000
 
 int hl_scheme_stepper_jit(hl_scheme_stepper *st, long nsteps)
 {
@@ -183,19 +185,6 @@ static int compile_explicit(hl_scheme_stepper *st, const hl_scheme *s, const hl_
     return rc;
 }
 
-int hl_scheme_step_exprs(const hl_expr **Z, const hl_scheme *s, hl_error *err)
-{
-    if (!s->all_explicit)
-        return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "the scheme '%s' is implicit", s->name);
-    hl_pool *pool = hl_system_pool(s->sys);
-    const hl_expr **lhs = hl_xmalloc((size_t)s->m * sizeof *lhs);
-    const hl_expr **rhs = hl_xmalloc((size_t)s->m * sizeof *rhs);
-    quadrature(lhs, rhs, s, pool);
-    explicit_map(Z, s, rhs, pool);
-    free(lhs), free(rhs);
-    return HL_OK;
-}
-
 static int has_unknown(const hl_expr *e, const hl_scheme *s)
 {
     for (int u = 0; u < s->m; u++)
@@ -237,11 +226,12 @@ static int divides_by_unknown(const hl_expr *e, const hl_scheme *s, hl_memo *see
     return r;
 }
 
-/* Equations that divide by an expression in the unknowns are replaced by
- * their exact canonical form (alg.h), which cancels common factors: the
- * paper's (P^2 - p^2)/(2(P - p)) becomes (P + p)/2, regular where P = p.
- * The others are kept as written (expanding them would only cost). */
-static void simplify(const hl_expr **F, int nF, const hl_scheme *s, hl_pool *pool)
+/* Equations that divide by an expression in the unknowns (or all of them)
+ * are replaced by their exact canonical form (alg.h), which cancels common
+ * factors: the paper's (P^2 - p^2)/(2(P - p)) becomes (P + p)/2, regular
+ * where P = p.  The others are kept as written (expanding them would only
+ * cost). */
+static void simplify(const hl_expr **F, int nF, int all, const hl_scheme *s, hl_pool *pool)
 {
     hl_alg_ctx *ctx = hl_system_ctx(s->sys);
     int nb = hl_alg_ctx_nbase(ctx);
@@ -250,7 +240,7 @@ static void simplify(const hl_expr **F, int nF, const hl_scheme *s, hl_pool *poo
     hl_memo seen;
     hl_memo_init(&seen);
     for (int i = 0; i < nF; i++) {
-        if (!divides_by_unknown(F[i], s, &seen))
+        if (!all && !divides_by_unknown(F[i], s, &seen))
             continue;
         if (aux == NULL) {
             const char **names = hl_xmalloc((size_t)(nb + s->m) * sizeof *names);
@@ -272,38 +262,92 @@ static void simplify(const hl_expr **F, int nF, const hl_scheme *s, hl_pool *poo
     hl_memo_clear(&seen);
 }
 
-/* Unknowns that an equation gives explicitly (U_u = an expression free of
- * U_u) leave the Newton system: val[u] becomes that expression, free of
- * every other eliminated unknown, and gone[i] marks the equation.  These
- * are Q and P of a Runge-Kutta scheme or a discrete gradient: Newton then
- * solves for the stages alone, as one would by hand (gauss2 with one
- * degree of freedom: 4 unknowns, not 6).  Returns how many. */
-static int eliminate(const hl_expr **val, int *gone, const hl_scheme *s, const hl_expr **rhs,
-                     hl_pool *pool)
+/* e with the eliminated unknowns replaced by their values. */
+static const hl_expr *subst_known(const hl_expr *e, const hl_expr **val, const hl_scheme *s,
+                                  hl_pool *pool)
 {
-    int n = 0;
     const char **names = hl_xmalloc((size_t)s->m * sizeof *names);
     const hl_expr **vals = hl_xmalloc((size_t)s->m * sizeof *vals);
-    for (int i = 0; i < s->m; i++) {
-        int u = s->defines[i];
-        if (u < 0)
-            continue;
-        int k = 0;
-        for (int v = 0; v < s->m; v++)
-            if (val[v] != NULL)
-                names[k] = s->unknown[v], vals[k++] = val[v];
-        const hl_expr *r = hl_expr_subst(pool, rhs[i], k, names, vals);
-        if (hl_expr_has_symbol(r, s->unknown[u]))
-            continue;
-        for (int v = 0; v < s->m; v++)
-            if (val[v] != NULL)
-                val[v] = hl_expr_subst(pool, val[v], 1, (const char *const *)&s->unknown[u], &r);
-        val[u] = r;
-        gone[i] = 1;
-        n++;
-    }
+    int k = 0;
+    for (int v = 0; v < s->m; v++)
+        if (val[v] != NULL)
+            names[k] = s->unknown[v], vals[k++] = val[v];
+    const hl_expr *r = k ? hl_expr_subst(pool, e, k, names, vals) : e;
     free(names), free(vals);
+    return r;
+}
+
+/* The unknown equation i gives explicitly, and its value: U_u = rhs free of
+ * U_u, or an equation affine in one unknown with a coefficient free of the
+ * unknowns ((Q - q)/D = p gives Q = q + p D).  -1 if none. */
+static int solvable(const hl_expr **value, int i, const hl_expr **val, const hl_scheme *s,
+                    const hl_expr **lhs, const hl_expr **rhs, hl_pool *pool)
+{
+    int u = s->defines[i];
+    if (u >= 0) {
+        const hl_expr *r = subst_known(rhs[i], val, s, pool);
+        if (!hl_expr_has_symbol(r, s->unknown[u])) {
+            *value = r;
+            return u;
+        }
+    }
+    const hl_expr *F = subst_known(hl_sub(pool, lhs[i], rhs[i]), val, s, pool);
+    for (u = 0; u < s->m; u++) {
+        if (val[u] != NULL || !hl_expr_has_symbol(F, s->unknown[u]))
+            continue;
+        const hl_expr *c = hl_expr_diff(pool, F, s->unknown[u]);
+        if (has_unknown(c, s))
+            continue;
+        const hl_expr *zero = hl_num_si(pool, 0);
+        const hl_expr *F0 = hl_expr_subst(pool, F, 1, (const char *const *)&s->unknown[u], &zero);
+        *value = hl_neg(pool, hl_div(pool, F0, c));
+        if (s->nint == 0) /* -F0/c in canonical form: Q = q + p D, not (q/D + p) D */
+            simplify(value, 1, 1, s, pool);
+        return u;
+    }
+    return -1;
+}
+
+/* Unknowns that an equation gives explicitly (solvable) leave the Newton
+ * system: val[u] becomes that expression, free of every other eliminated
+ * unknown, and gone[i] marks the equation.  These are Q and P of a
+ * Runge-Kutta scheme or a discrete gradient: Newton then solves for the
+ * stages alone, as one would by hand (gauss2 with one degree of freedom: 4
+ * unknowns, not 6); all of them for an explicit scheme written as
+ * equations, such as the paper's Euler method.  Returns how many. */
+static int eliminate(const hl_expr **val, int *gone, const hl_scheme *s, const hl_expr **lhs,
+                     const hl_expr **rhs, hl_pool *pool)
+{
+    int n = 0, more = 1;
+    while (more) { /* one elimination may make another equation solvable */
+        more = 0;
+        for (int i = 0; i < s->m; i++) {
+            const hl_expr *r;
+            int u = gone[i] ? -1 : solvable(&r, i, val, s, lhs, rhs, pool);
+            if (u < 0)
+                continue;
+            for (int v = 0; v < s->m; v++)
+                if (val[v] != NULL)
+                    val[v] = hl_expr_subst(pool, val[v], 1, (const char *const *)&s->unknown[u],
+                                           &r);
+            val[u] = r;
+            gone[i] = 1;
+            n++, more = 1;
+        }
+    }
     return n;
+}
+
+/* simplify on the eliminated unknowns' values (NULL: kept): the paper's
+ * discrete gradient gives X = x + D (P^2 - p^2)/(2(P - p)), 0/0 at P = p
+ * until put in canonical form.  Not after quadrature (see compile_newton). */
+static void simplify_values(const hl_expr **val, const hl_scheme *s, hl_pool *pool)
+{
+    if (s->nint > 0)
+        return;
+    for (int u = 0; u < s->m; u++)
+        if (val[u] != NULL)
+            simplify(&val[u], 1, 0, s, pool);
 }
 
 /* Implicit: F = lhs - rhs over the unknowns kept (eliminate), F with its
@@ -316,7 +360,18 @@ static int compile_newton(hl_scheme_stepper *st, const hl_scheme *s, const hl_ex
     int m = s->m, N = s->N, nz = 2 * N + 1;
     const hl_expr **val = hl_xcalloc((size_t)m, sizeof *val);
     int *gone = hl_xcalloc((size_t)m, sizeof *gone), *keep = hl_xmalloc((size_t)m * sizeof *keep);
-    int mk = m - eliminate(val, gone, s, rhs, pool), k = 0;
+    int mk = m - eliminate(val, gone, s, lhs, rhs, pool), k = 0;
+    simplify_values(val, s, pool);
+    if (mk == 0) { /* every unknown given explicitly: a map after all */
+        const hl_expr **Z = hl_xmalloc((size_t)(2 * N) * sizeof *Z);
+        for (int j = 0; j < N; j++)
+            Z[j] = val[s->iQ[j]], Z[N + j] = val[s->iP[j]];
+        int rc = hl_tape_new(&st->tape, Z, 2 * N, inputs, nz, err);
+        st->all_explicit = 1;
+        st->m = 0;
+        free(Z), free(val), free(gone), free(keep);
+        return rc;
+    }
     for (int u = 0; u < m; u++)
         if (val[u] == NULL)
             inputs[nz + k] = s->unknown[u], keep[k++] = u;
@@ -335,7 +390,7 @@ static int compile_newton(hl_scheme_stepper *st, const hl_scheme *s, const hl_ex
      * the current point, and over a common denominator the Gauss sum of a
      * rational H swells into a huge polynomial with huge coefficients. */
     if (s->nint == 0)
-        simplify(outs, mk, s, pool);
+        simplify(outs, mk, 0, s, pool);
     for (int i = 0; i < mk; i++)
         for (int u = 0; u < mk; u++)
             outs[mk + i * mk + u] = hl_expr_diff(pool, outs[i], s->unknown[keep[u]]);
@@ -368,6 +423,31 @@ static int compile_newton(hl_scheme_stepper *st, const hl_scheme *s, const hl_ex
     st->m = mk;
     free(outs), free(val), free(gone), free(keep), free(names), free(vals);
     return rc;
+}
+
+int hl_scheme_step_exprs(const hl_expr **Z, const hl_scheme *s, hl_error *err)
+{
+    hl_pool *pool = hl_system_pool(s->sys);
+    int m = s->m, N = s->N, st = HL_OK;
+    const hl_expr **lhs = hl_xmalloc((size_t)m * sizeof *lhs);
+    const hl_expr **rhs = hl_xmalloc((size_t)m * sizeof *rhs);
+    quadrature(lhs, rhs, s, pool);
+    if (s->all_explicit)
+        explicit_map(Z, s, rhs, pool);
+    else { /* explicit if every unknown can be eliminated (the paper's Euler) */
+        const hl_expr **val = hl_xcalloc((size_t)m, sizeof *val);
+        int *gone = hl_xcalloc((size_t)m, sizeof *gone);
+        if (eliminate(val, gone, s, lhs, rhs, pool) < m)
+            st = hl_error_set(err, HL_EINVAL, NULL, -1, 0, "the scheme '%s' is implicit",
+                              s->name);
+        else
+            simplify_values(val, s, pool);
+        for (int j = 0; j < N && st == HL_OK; j++)
+            Z[j] = val[s->iQ[j]], Z[N + j] = val[s->iP[j]];
+        free(val), free(gone);
+    }
+    free(lhs), free(rhs);
+    return st;
 }
 
 int hl_scheme_stepper_new(hl_scheme_stepper **out, const hl_scheme *s, hl_error *err)
