@@ -16,6 +16,10 @@ struct hl_flow {
     double *coef; /* n * (p+1) Taylor coefficients of the current step */
     double *zt;   /* n: state at an output time */
     long nsteps;
+    double native_end; /* hl_flow_native_for's t_end, NAN if not asked */
+    double t_probe;    /* the time of the first step since it was asked */
+    long n_probe;      /* and nsteps then */
+    int native_done;   /* decided (compiled or not) */
 };
 
 int hl_flow_new(hl_flow **out, hl_tape *f, double atol, double rtol, hl_error *err)
@@ -39,6 +43,7 @@ int hl_flow_new(hl_flow **out, hl_tape *f, double atol, double rtol, hl_error *e
     fl->p = hl_flow_order_for(log(fmin(atol, rtol)));
     fl->coef = hl_xcalloc((size_t)n * (fl->p + 1), sizeof *fl->coef);
     fl->zt = hl_xcalloc((size_t)n, sizeof *fl->zt);
+    fl->native_end = NAN;
     *out = fl;
     return HL_OK;
 }
@@ -53,6 +58,39 @@ void hl_flow_free(hl_flow *fl)
 }
 
 int hl_flow_order(const hl_flow *fl) { return fl->p; }
+
+void hl_flow_native_for(hl_flow *fl, double t_end)
+{
+    fl->native_end = t_end;
+    fl->t_probe = NAN;
+    fl->native_done = 0;
+}
+
+int hl_flow_native_active(const hl_flow *fl)
+{
+    return fl->native_done == 2;
+}
+
+/* After the probe steps: compile if the steps foreseen to native_end are
+ * many (see flow.h).  t: the time reached. */
+static void native_decide(hl_flow *fl, double t)
+{
+    if (fl->native_done || isnan(fl->native_end))
+        return;
+    if (isnan(fl->t_probe)) {
+        fl->t_probe = t;
+        fl->n_probe = fl->nsteps;
+        return;
+    }
+    long done = fl->nsteps - fl->n_probe;
+    if (done < HL_FLOW_NATIVE_PROBE)
+        return;
+    double mean = fabs(t - fl->t_probe) / (double)done;
+    double left = fabs(fl->native_end - t) / mean;
+    fl->native_done = 1;
+    if (left > (double)HL_FLOW_NATIVE_STEPS && hl_tape_native(fl->f, fl->p, NULL) == HL_OK)
+        fl->native_done = 2;
+}
 long hl_flow_nsteps(const hl_flow *fl) { return fl->nsteps; }
 
 /* Time as an unevaluated sum hi + lo (Knuth's two-sum). */
@@ -153,6 +191,7 @@ static int drive(hl_flow *fl, double *thi, double *tlo, double *z, double tend, 
                                 *thi + dir * h);
         memcpy(z, fl->zt, (size_t)fl->n * sizeof *z);
         fl->nsteps++;
+        native_decide(fl, *thi + dir * h);
         if (last) {
             *thi = tend;
             *tlo = 0;

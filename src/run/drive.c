@@ -136,6 +136,8 @@ static int fixed_ref(drive *d, hl_error *err)
     int st = hl_flow_new(&fl, r->vf, r->ref_tol, r->ref_tol, err);
     if (st != HL_OK)
         return st;
+    if (r->jit) /* a long reference compiles its recursion */
+        hl_flow_native_for(fl, (double)d->n * d->dt);
     long cap = d->n < CHUNK ? d->n : CHUNK;
     double *ts = hl_xmalloc((size_t)(cap > 0 ? cap : 1) * sizeof *ts);
     double *zr = hl_xmalloc((size_t)(2 * r->N) * sizeof *zr);
@@ -343,6 +345,8 @@ int hl_run_adaptive(hl_run *r, const double *z0, double tol, double dt, double t
     hl_flow *fl = NULL;
     if ((st = hl_flow_new(&fl, r->vf, tol, tol, err)) != HL_OK)
         return st;
+    if (r->jit) /* a long run compiles its recursion */
+        hl_flow_native_for(fl, t);
     st = row(&d, 0, NULL);
     double *zr = hl_xmalloc((size_t)(2 * r->N) * sizeof *zr);
     long cap = d.n < CHUNK ? d.n : CHUNK;

@@ -363,6 +363,33 @@ static void test_arb_run(void)
     hl_tape_free(t);
 }
 
+/* hl_flow_native_for: a run that foresees more than HL_FLOW_NATIVE_STEPS
+ * steps compiles its recursion after the probe (and stays on the
+ * oscillator's closed form); one that does not, does not.  The run is cut
+ * short: the decision needs only the probe. */
+static void test_native_for(void)
+{
+    hl_error err;
+    hl_tape *probe = oscillator(); /* can this machine compile a recursion at all? */
+    int can = hl_tape_native(probe, 5, &err) == HL_OK;
+    hl_tape_free(probe);
+    for (int longrun = 0; longrun < 2; longrun++) {
+        hl_tape *t = oscillator();
+        hl_flow *fl = NULL;
+        CHECK(hl_flow_new(&fl, t, 1e-15, 1e-15, &err) == HL_OK);
+        hl_flow_native_for(fl, longrun ? 2e6 : 1e5);
+        double tt = 0, z[2] = {1, 0};
+        CHECK(hl_flow_evolve(fl, &tt, 3000, z, &err) == HL_OK);
+        CHECK(hl_flow_nsteps(fl) > 2 * HL_FLOW_NATIVE_PROBE);
+        int want = longrun && can;
+        CHECK_MSG(hl_flow_native_active(fl) == want, "t_end %g: native %d", longrun ? 2e6 : 1e5,
+                  hl_flow_native_active(fl));
+        CHECK(fabs(z[0] - cos(3000.0)) < 1e-12 && fabs(z[1] + sin(3000.0)) < 1e-12);
+        hl_flow_free(fl);
+        hl_tape_free(t);
+    }
+}
+
 int main(void)
 {
     P = hl_pool_new();
@@ -373,6 +400,7 @@ int main(void)
     test_kepler();
     test_blowup();
     test_callback_stop();
+    test_native_for();
     hl_pool_free(P);
     flint_cleanup();
     return HL_TEST_END();
