@@ -459,6 +459,22 @@ static int close_out(csv *c, const run_opts *r, const char *tmpname, int ok,
     return rc;
 }
 
+/* With nothing to consume the rows (--json alone) the runner need deliver
+ * them only for the progress line: a row every ~0.1% of a long run, so
+ * that long runs iterate in machine code between rows (run/drive.c). */
+static long sparse_every(long every, long n)
+{
+    long want = n / 1000 > 16 ? n / 1000 : 16;
+    return want <= every ? every : (want / every + 1) * every;
+}
+
+/* The rows --every would give for the steps done (run.h: row k is
+ * delivered when k % every == 0 or k == n). */
+static long rows_for(long steps, long every, long n)
+{
+    return steps / every + 1 + (steps == n && n % every != 0);
+}
+
 static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts *o,
                   const double *z0)
 {
@@ -500,8 +516,12 @@ static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts
     c.last = t0;
     hl_run_stats s;
     memset(&s, 0, sizeof s);
+    int consumed = want_csv || r->plot != NULL;
+    long every = consumed || ad ? r->every : sparse_every(r->every, n);
     int st = ad ? hl_run_adaptive(run, z0, r->tol, dt, r->t, r->every, csv_row, &c, &s, &err)
-                : hl_run_fixed(run, z0, dt, r->t, r->every, csv_row, &c, &s, &err);
+                : hl_run_fixed(run, z0, dt, r->t, every, csv_row, &c, &s, &err);
+    if (every != r->every)
+        s.rows = rows_for(s.steps, r->every, n);
     struct timespec t1;
     double wall = now(&t1) - w0;
     if (c.progress && n >= 65536 * 2)
