@@ -444,6 +444,7 @@ typedef struct tj {
     gcc_jit_lvalue **inv2; /* DIV, KDIV: d[0] / that divisor */
     gcc_jit_lvalue **coef; /* the locals of the coefficients (RL) */
     int fma;               /* the machine code may use FMA instructions */
+    int *def;              /* by register: the instruction that writes it, or -1 */
 } tj;
 
 /* Coefficient j of register reg: constants are read from the register
@@ -649,10 +650,26 @@ static void temit(tj *T, const hl_instr *in, int i, int k)
     case HL_OP_SUB:
         tset(T, d, k, SUB_(RV(T, a, k), RV(T, b, k)));
         return;
-    case HL_OP_MUL:
+    case HL_OP_MUL: {
+        int w = hl_tape_sqrt_times_(T->J.t, T->def, in);
+        if (w >= 0) { /* sqrt(w) w as w^(3/2): see hl_tape_sqrt_times_ */
+            if (k == 0) {
+                tconv(T, a, b, 0, 0, 0);
+                tset(T, d, 0, tsum(T));
+                keep_inverse(T, i, RV(T, w, 0));
+                keep_ratio(T, i, MUL_(NUM(T, 1.5), RV(T, d, 0)));
+                return;
+            }
+            for (int m = 1; m < k; m++)
+                tterm(T, MUL_(MUL_(NUM(T, 2.5 * m - k), RV(T, w, m)), RV(T, d, k - m)), -1);
+            tset(T, d, k,
+                 ADD_(OVER_K(T, MUL_(tsum(T), INV(T, i)), k), MUL_(RV(T, w, k), RATIO(T, i))));
+            return;
+        }
         tconv(T, a, b, 0, k, k);
         tset(T, d, k, tsum(T));
         return;
+    }
     case HL_OP_SQR:
         tsqr(T, a, k);
         tset(T, d, k, tsum(T));
@@ -851,6 +868,7 @@ int hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tape *t, 
                                             "hl_native", 1, &prm, 0);
     T->R = gcc_jit_param_as_rvalue(prm);
     T->J.blk = gcc_jit_function_new_block(T->J.fun, "body");
+    T->def = hl_tape_defs_(t);
     T->inv = hl_xcalloc((size_t)t->ncode + 1, sizeof *T->inv);
     T->inv2 = hl_xcalloc((size_t)t->ncode + 1, sizeof *T->inv2);
     T->coef = hl_xcalloc((size_t)t->nregs * (size_t)T->S, sizeof *T->coef);
@@ -869,6 +887,7 @@ int hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tape *t, 
     free(T->term);
     free(T->inv);
     free(T->inv2);
+    free(T->def);
     free(T->coef);
     gcc_jit_result *res = gcc_jit_context_compile(c);
     void *f = res ? gcc_jit_result_get_code(res, "hl_native") : NULL;

@@ -21,14 +21,15 @@ static unsigned rnd(unsigned n)
     return (unsigned)(rng >> 33) % n;
 }
 
-/* Each op at least once over the outputs, with arguments kept in domain. */
+/* Each op at least once over the outputs, with arguments kept in domain
+ * (and sqrt(w) w, which the compiled recursions take as w^(3/2)). */
 static const hl_expr *op_expr(int which)
 {
     const hl_expr *x = hl_sym(P, "x"), *y = hl_sym(P, "y"), *z = hl_sym(P, "z");
     const hl_expr *one = hl_num_si(P, 1), *two = hl_num_si(P, 2), *pi = hl_pi(P);
     const hl_expr *pos = hl_add(P, one, hl_pow(P, y, two));
     const hl_expr *sx = hl_call(P, HL_SIN, x), *half = hl_div(P, sx, two);
-    switch (which % 16) {
+    switch (which % 17) {
     case 0: return hl_sub(P, hl_mul(P, x, y), hl_div(P, z, pos));
     case 1: return hl_add(P, hl_sub(P, pi, x), hl_div(P, hl_sub(P, y, pi), pi));
     case 2: return hl_div(P, pi, pos);
@@ -44,6 +45,7 @@ static const hl_expr *op_expr(int which)
     case 12: return hl_call(P, HL_ACOS, half);
     case 13: return hl_mul(P, hl_call(P, HL_SINH, half), hl_call(P, HL_COSH, half));
     case 14: return hl_pow(P, x, hl_num_si(P, 5));
+    case 16: return hl_div(P, x, hl_mul(P, hl_call(P, HL_SQRT, pos), pos)); /* Kepler's x/r^3 */
     default: return hl_neg(P, hl_mul(P, hl_pow(P, pos, x), pi)); /* non-constant exponent */
     }
 }
