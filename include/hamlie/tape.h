@@ -219,7 +219,8 @@ long hl_tape_iterate_watch(double *in, long n, double w0, double *dev, hl_tape *
  * the corrections stop shrinking fast (ratio of successive corrections
  * > 1/4); done when a correction is at rounding level (max |dU| <= 4 eps
  * max(1, |U|)), or below 1e-12 max(1, |U|) and no longer shrinking (ratio
- * >= 1/2: F's own rounding).  The tapes: start x -> U0 (nx inputs, m
+ * >= 1/2: F's own rounding); or the same test on an output
+ * (hl_newton_set_output).  The tapes: start x -> U0 (nx inputs, m
  * outputs), F (x, U) -> F (m outputs), FJ (x, U) -> F then dF/dU row-major
  * (m + m^2 outputs), the same F in both; borrowed, not copied.  The solve
  * allocates nothing; one hl_newton must not be used by two threads. */
@@ -235,6 +236,13 @@ typedef struct hl_newton hl_newton;
 
 int hl_newton_new(hl_newton **out, hl_tape *start, hl_tape *F, hl_tape *FJ, int max_iter,
                   hl_error *err);
+
+/* Decide convergence on Z(x, U) instead of U (Z: nx + m inputs, any number
+ * of outputs, borrowed): done when Z moves by at most 4 eps max(1, |Z|), or
+ * by at most 1e-12 max(1, |Z|) while the corrections no longer shrink.  For
+ * a scheme Z is the next point: unknowns that are rates (Q - q)/D carry
+ * rounding noise 1/D above the point's, which a test on U would chase. */
+void hl_newton_set_output(hl_newton *nw, hl_tape *Z);
 void hl_newton_free(hl_newton *nw); /* NULL is a no-op */
 int hl_newton_unknowns(const hl_newton *nw);
 

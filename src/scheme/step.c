@@ -420,6 +420,8 @@ static int compile_newton(hl_scheme_stepper *st, const hl_scheme *s, const hl_ex
         rc = hl_tape_new(&st->start, outs, mk, inputs, nz, err);
     if (rc == HL_OK)
         rc = hl_newton_new(&st->nw, st->start, st->tape, st->jac, HL_SCHEME_NEWTON_MAX, err);
+    if (rc == HL_OK) /* converged when the next point is, to rounding */
+        hl_newton_set_output(st->nw, st->after);
     st->m = mk;
     free(outs), free(val), free(gone), free(keep), free(names), free(vals);
     return rc;

@@ -924,13 +924,14 @@ typedef struct nj {
     gcc_jit_context *c;
     gcc_jit_function *fun;
     gcc_jit_type *dbl, *intt;
-    jit T[3]; /* start, F, FJ */
+    jit T[4]; /* start, F, FJ, and Z (hl_newton_set_output) */
     gcc_jit_rvalue *x, *U, *iters, *last;
     gcc_jit_lvalue **u;                  /* m locals: the iterate */
     gcc_jit_lvalue *A, *b, *dinv, *piv;  /* local arrays */
     gcc_jit_lvalue *it, *fresh, *prev, *ratio, *dn, *un, *r, *tmp;
+    gcc_jit_lvalue *zprev, *zd, *zs; /* with Z: its last values, move, size */
     gcc_jit_function *fabs_;
-    int m, nx;
+    int m, nx, ntapes;
     int nblk;
 } nj;
 
@@ -1032,8 +1033,8 @@ static gcc_jit_rvalue **inline_tape(nj *N, int k, gcc_jit_block *blk, int with_u
     gcc_jit_rvalue **out = hl_xmalloc((size_t)J->t->nout * sizeof *out);
     for (int j = 0; j < J->t->nout; j++)
         out[j] = val(J, J->t->outreg[j]);
-    /* the imports are shared by the three tapes */
-    for (int q = 0; q < 3; q++)
+    /* the imports are shared by the tapes */
+    for (int q = 0; q < N->ntapes && q < 4; q++)
         if (q != k) {
             memcpy(N->T[q].lib, J->lib, sizeof J->lib);
             N->T[q].cosh = J->cosh, N->T[q].sin = J->sin, N->T[q].cos = J->cos;
@@ -1134,8 +1135,8 @@ static void build_newton(nj *N, const hl_newton *nw)
                                           "hl_jit_newton", 4, prm, 0);
     N->x = gcc_jit_param_as_rvalue(prm[0]), N->U = gcc_jit_param_as_rvalue(prm[1]);
     N->iters = gcc_jit_param_as_rvalue(prm[2]), N->last = gcc_jit_param_as_rvalue(prm[3]);
-    static const char *prefix[3] = {"s", "f", "j"};
-    for (int k = 0; k < 3; k++) {
+    static const char *prefix[4] = {"s", "f", "j", "z"};
+    for (int k = 0; k < N->ntapes; k++) {
         N->T[k].fun = N->fun;
         new_locals(&N->T[k], prefix[k]);
     }
@@ -1160,6 +1161,12 @@ static void build_newton(nj *N, const hl_newton *nw)
     N->dn = gcc_jit_function_new_local(N->fun, NULL, N->dbl, "dn");
     N->un = gcc_jit_function_new_local(N->fun, NULL, N->dbl, "un");
     N->tmp = gcc_jit_function_new_local(N->fun, NULL, N->dbl, "tmp");
+    if (nw->Z != NULL) {
+        gcc_jit_type *az = gcc_jit_context_new_array_type(c, NULL, N->dbl, nw->nz);
+        N->zprev = gcc_jit_function_new_local(N->fun, NULL, az, "zprev");
+        N->zd = gcc_jit_function_new_local(N->fun, NULL, N->dbl, "zd");
+        N->zs = gcc_jit_function_new_local(N->fun, NULL, N->dbl, "zs");
+    }
     gcc_jit_lvalue *iters = gcc_jit_rvalue_dereference(N->iters, NULL);
     gcc_jit_lvalue *last = gcc_jit_rvalue_dereference(N->last, NULL);
 
@@ -1176,6 +1183,12 @@ static void build_newton(nj *N, const hl_newton *nw)
         uv[i] = RVL(N->u[i]);
     blk = check(N, blk, CMP(N, GCC_JIT_COMPARISON_EQ, finite_sum(N, uv, m), ND(N, 0)),
                 exit_block(N, HL_NEWTON_START));
+    if (nw->Z != NULL) { /* Z at the start */
+        gcc_jit_rvalue **z0 = inline_tape(N, 3, blk, 1);
+        for (int i = 0; i < nw->nz; i++)
+            SET(blk, ATI(N, N->zprev, i), z0[i]);
+        free(z0);
+    }
     SET(blk, N->prev, ND(N, INFINITY));
     SET(blk, N->ratio, ND(N, 0));
     SET(blk, N->fresh, NI(N, 0));
@@ -1260,16 +1273,33 @@ static void build_newton(nj *N, const hl_newton *nw)
     gcc_jit_block_end_with_jump(div, NULL, conv);
     SET(zero, N->ratio, ND(N, 0));
     gcc_jit_block_end_with_jump(zero, NULL, conv);
-    /* dn <= 4 eps un || (dn <= 1e-12 un && ratio >= 0.5) */
+    /* the move: of U (dn, un), or of Z (zd, zs: newton.c's output_move) */
+    gcc_jit_lvalue *mv = N->dn, *sz = N->un;
+    if (nw->Z != NULL) {
+        gcc_jit_rvalue **zv = inline_tape(N, 3, conv, 1);
+        SET(conv, N->zd, ND(N, 0));
+        SET(conv, N->zs, ND(N, 1));
+        for (int i = 0; i < nw->nz; i++) {
+            SET(conv, N->tmp, zv[i]);
+            conv = raise_to(N, conv, N->zd,
+                            FABS(N, OP(N, GCC_JIT_BINARY_OP_MINUS, RVL(N->tmp),
+                                       RVL(ATI(N, N->zprev, i)))));
+            conv = raise_to(N, conv, N->zs, FABS(N, RVL(N->tmp)));
+            SET(conv, ATI(N, N->zprev, i), RVL(N->tmp));
+        }
+        free(zv);
+        mv = N->zd, sz = N->zs;
+    }
+    /* converged: move <= 4 eps size || (move <= 1e-12 size && ratio >= 0.5) */
     gcc_jit_type *boolt = gcc_jit_context_get_type(c, GCC_JIT_TYPE_BOOL);
     gcc_jit_rvalue *done = gcc_jit_context_new_binary_op(
         c, NULL, GCC_JIT_BINARY_OP_LOGICAL_OR, boolt,
-        CMP(N, GCC_JIT_COMPARISON_LE, RVL(N->dn),
-            OP(N, GCC_JIT_BINARY_OP_MULT, ND(N, 4 * DBL_EPSILON), RVL(N->un))),
+        CMP(N, GCC_JIT_COMPARISON_LE, RVL(mv),
+            OP(N, GCC_JIT_BINARY_OP_MULT, ND(N, 4 * DBL_EPSILON), RVL(sz))),
         gcc_jit_context_new_binary_op(
             c, NULL, GCC_JIT_BINARY_OP_LOGICAL_AND, boolt,
-            CMP(N, GCC_JIT_COMPARISON_LE, RVL(N->dn),
-                OP(N, GCC_JIT_BINARY_OP_MULT, ND(N, 1e-12), RVL(N->un))),
+            CMP(N, GCC_JIT_COMPARISON_LE, RVL(mv),
+                OP(N, GCC_JIT_BINARY_OP_MULT, ND(N, 1e-12), RVL(sz))),
             CMP(N, GCC_JIT_COMPARISON_GE, RVL(N->ratio), ND(N, 0.5))));
     gcc_jit_block *again = BLK(N);
     gcc_jit_block_end_with_conditional(conv, NULL, done, exit_block(N, HL_NEWTON_OK), again);
@@ -1291,12 +1321,12 @@ int hl_newton_jit(hl_newton *nw, hl_error *err)
     gcc_jit_context_set_bool_print_errors_to_stderr(c, 0);
     gcc_jit_context_add_command_line_option(c, "-ffp-contract=off");
     add_env_flags(c);
-    nj N = {.c = c, .m = nw->m, .nx = nw->nx};
+    nj N = {.c = c, .m = nw->m, .nx = nw->nx, .ntapes = nw->Z != NULL ? 4 : 3};
     N.dbl = gcc_jit_context_get_type(c, GCC_JIT_TYPE_DOUBLE);
     N.intt = gcc_jit_context_get_type(c, GCC_JIT_TYPE_INT);
     N.fabs_ = gcc_jit_context_get_builtin_function(c, "__builtin_fabs");
-    hl_tape *tapes[3] = {nw->start, nw->F, nw->FJ};
-    for (int k = 0; k < 3; k++) {
+    hl_tape *tapes[4] = {nw->start, nw->F, nw->FJ, nw->Z};
+    for (int k = 0; k < N.ntapes; k++) {
         jit *J = &N.T[k];
         J->c = c, J->t = tapes[k], J->dbl = N.dbl, J->dblp = gcc_jit_type_get_pointer(N.dbl);
         J->sqrt = gcc_jit_context_get_builtin_function(c, "__builtin_sqrt");
@@ -1304,7 +1334,7 @@ int hl_newton_jit(hl_newton *nw, hl_error *err)
         J->read = registers_read(tapes[k]);
     }
     build_newton(&N, nw);
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < N.ntapes; k++)
         free(N.T[k].loc), free(N.T[k].read);
     gcc_jit_result *res = gcc_jit_context_compile(c);
     void *fn = res != NULL ? gcc_jit_result_get_code(res, "hl_jit_newton") : NULL;

@@ -69,8 +69,9 @@ struct hl_tape {
 typedef int (*hl_newton_jit_fn)(const double *x, double *U, int *iters, double *last);
 struct hl_newton {
     hl_tape *start, *F, *FJ; /* borrowed */
-    int nx, m, max_iter;
-    double *in, *out, *A, *b, *dinv;
+    hl_tape *Z;              /* convergence on Z(x, U) if not NULL (borrowed) */
+    int nx, m, max_iter, nz;
+    double *in, *out, *A, *b, *dinv, *z, *zprev;
     int *piv;
     void *jit_result;        /* hl_newton_jit: the gcc_jit_result and its entry */
     hl_newton_jit_fn jit_fn;
