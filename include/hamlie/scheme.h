@@ -169,6 +169,12 @@ int hl_scheme_linear_flow_map(char **map, hl_system *sys, hl_error *err);
 /* 1 when hl_scheme_linear_flow succeeds for sys (the catalog's "exact"
  * applies), else 0. */
 int hl_scheme_linear_flow_applies(hl_system *sys);
+/* For a quadratic H that couples its pairs and has a closed form: its
+ * normal modes as text, one per eigenvalue of A^2, e.g. "elliptic w =
+ * sqrt(5/2 - sqrt(13)/2); elliptic w = sqrt(sqrt(13)/2 + 5/2)" (w the
+ * frequency, or the rate of a hyperbolic mode; "free" for w = 0), malloc'd.
+ * HL_EUNSUP when H does not couple its pairs or has no closed form here. */
+int hl_scheme_linear_modes(char **text, hl_system *sys, hl_error *err);
 
 /* ---- the symbolic reading ---------------------------------------------- */
 

@@ -135,6 +135,9 @@ static void write_out(hl_buf *out, const hl_alg *img, const exact_checks *c, int
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     hl_pool *pool = hl_system_pool(sys);
     int M = 2 * hl_system_ndof(sys);
+    char *modes = NULL; /* coupled pairs: the normal modes, else NULL */
+    if (hl_scheme_linear_modes(&modes, sys, NULL) != HL_OK)
+        modes = NULL;
     if (o->format == CLI_JSON) {
         hl_json j;
         hl_json_init_buf(&j, out);
@@ -155,11 +158,17 @@ static void write_out(hl_buf *out, const hl_alg *img, const exact_checks *c, int
         hl_json_kv_bool(&j, "canonical", c->canonical);
         hl_json_kv_bool(&j, "two_steps_equal_one_of_2D", c->group);
         hl_json_kv_bool(&j, "numeric_zero_test", hl_alg_ctx_numeric_used(ctx));
+        if (modes != NULL)
+            hl_json_kv_string(&j, "normal_modes", modes);
         hl_json_object_end(&j);
         hl_json_finish(&j);
+        free(modes);
         return;
     }
     int latex = o->format == CLI_LATEX;
+    if (modes != NULL)
+        hl_buf_printf(out, "normal modes: %s\n", modes);
+    free(modes);
     hl_buf_puts(out, "exact scheme:\n");
     for (int i = 0; i < M; i++) {
         char *nm = cli_image_name(sys, i);

@@ -202,6 +202,26 @@ int hl_scheme_linear_flow(hl_alg *images, hl_system *sys, hl_error *err)
     return st;
 }
 
+int hl_scheme_linear_modes(char **text, hl_system *sys, hl_error *err)
+{
+    *text = NULL;
+    if (!hl_system_has_H(sys))
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "the normal modes need a Hamiltonian");
+    hl_alg_ctx *ctx = hl_system_ctx(sys);
+    int N = hl_system_ndof(sys), M = 2 * N;
+    hl_alg *hess = hl_alg_vec_new(M * M, ctx), *g0 = hl_alg_vec_new(M, ctx);
+    int st = hessian(hess, g0, sys, err), other = -1, any = 0;
+    for (int j = 0; j < N && st == HL_OK && !any; j++)
+        any = coupled(&other, hess, j, sys);
+    if (st == HL_OK && !any)
+        st = hl_error_set(err, HL_EUNSUP, NULL, -1, 0, "H does not couple its pairs");
+    if (st == HL_OK)
+        st = scheme_linear_modes_text(text, hess, g0, sys, err);
+    hl_alg_vec_free(hess, M * M, ctx);
+    hl_alg_vec_free(g0, M, ctx);
+    return st;
+}
+
 int hl_scheme_linear_flow_applies(hl_system *sys)
 {
     if (!hl_system_has_H(sys))

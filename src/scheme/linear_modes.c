@@ -67,18 +67,35 @@ static void put_q(hl_buf *b, const fmpq_t q)
     flint_free(s);
 }
 
-/* "(a + b*sqrt(d))"; a rational with a rational square root is written
- * without sqrt. */
+/* "(a + c*sqrt(d))" as one writes it, "(5/2 - sqrt(13)/2)"; a rational with
+ * a rational square root is written without sqrt. */
 static void put_surd(hl_buf *b, const fmpq_t a, const fmpq_t c, const fmpz_t d)
 {
     char *ds = fmpz_get_str(NULL, 10, d);
     hl_buf_puts(b, "(");
-    if (!fmpq_is_zero(a) || fmpq_is_zero(c))
-        put_q(b, a);
+    if (!fmpq_is_zero(a) || fmpq_is_zero(c)) { /* inside the parentheses: no more needed */
+        char *as = fmpq_get_str(NULL, 10, a);
+        hl_buf_puts(b, as);
+        flint_free(as);
+    }
     if (!fmpq_is_zero(c)) {
-        hl_buf_puts(b, fmpq_is_zero(a) ? "" : " + ");
-        put_q(b, c);
-        hl_buf_printf(b, "*sqrt(%s)", ds);
+        int neg = fmpq_sgn(c) < 0;
+        hl_buf_puts(b, !fmpq_is_zero(a) ? (neg ? " - " : " + ") : neg ? "-" : "");
+        fmpz_t n;
+        fmpz_init(n);
+        fmpz_abs(n, fmpq_numref(c));
+        if (!fmpz_is_one(n)) {
+            char *ns = fmpz_get_str(NULL, 10, n);
+            hl_buf_printf(b, "%s*", ns);
+            flint_free(ns);
+        }
+        hl_buf_printf(b, "sqrt(%s)", ds);
+        if (!fmpz_is_one(fmpq_denref(c))) {
+            char *qs = fmpz_get_str(NULL, 10, fmpq_denref(c));
+            hl_buf_printf(b, "/%s", qs);
+            flint_free(qs);
+        }
+        fmpz_clear(n);
     }
     hl_buf_puts(b, ")");
     flint_free(ds);
@@ -418,11 +435,70 @@ static int rational_field(fmpq_mat_t A, fmpq_mat_t b, const hl_alg *hess, const 
     return ok;
 }
 
+/* The rational field z' = A z + b of H, M = A^2 and its modes. */
+static int field_modes(mode *modes, int *nmodes, fmpq_mat_t A, fmpq_mat_t b, fmpq_mat_t Mm,
+                       const hl_alg *hess, const hl_alg *g0, hl_system *sys, hl_error *err)
+{
+    hl_alg_ctx *ctx = hl_system_ctx(sys);
+    int N = hl_system_ndof(sys), j, k;
+    coupled_pair(&j, &k, hess, N, ctx);
+    if (!rational_field(A, b, hess, g0, N, ctx))
+        return hl_error_set(err, HL_EUNSUP, NULL, -1, 0,
+                            "H couples the pairs of %s and %s and has symbolic coefficients: "
+                            "the closed form of coupled pairs needs rational ones",
+                            hl_system_coord(sys, j), hl_system_coord(sys, k));
+    fmpq_mat_mul(Mm, A, A);
+    return decompose(modes, nmodes, Mm, err);
+}
+
+int scheme_linear_modes_text(char **text, const hl_alg *hess, const hl_alg *g0, hl_system *sys,
+                             hl_error *err)
+{
+    int M = 2 * hl_system_ndof(sys), nmodes = 0;
+    fmpq_mat_t A, b, Mm;
+    fmpq_mat_init(A, M, M);
+    fmpq_mat_init(b, M, 1);
+    fmpq_mat_init(Mm, M, M);
+    mode *modes = malloc((size_t)M * sizeof *modes);
+    for (int i = 0; i < M; i++)
+        mode_init(&modes[i], M);
+    int st = field_modes(modes, &nmodes, A, b, Mm, hess, g0, sys, err);
+    hl_buf t;
+    hl_buf_init(&t);
+    for (int m = 0; m < nmodes && st == HL_OK; m++) {
+        const mode *md = &modes[m];
+        int sg = surd_sgn(md->alpha, md->beta, md->d);
+        hl_buf_puts(&t, m ? "; " : "");
+        if (sg == 0) {
+            hl_buf_puts(&t, "free (w = 0)");
+            continue;
+        }
+        fmpq_t a, c; /* w^2 = |mu| = a + c sqrt(d) */
+        fmpq_init(a);
+        fmpq_init(c);
+        fmpq_mul_si(a, md->alpha, sg);
+        fmpq_mul_si(c, md->beta, sg);
+        hl_buf_puts(&t, sg < 0 ? "elliptic w = " : "hyperbolic w = ");
+        put_root(&t, a, c, md->d);
+        fmpq_clear(a);
+        fmpq_clear(c);
+    }
+    *text = st == HL_OK ? hl_buf_take(&t) : NULL;
+    hl_buf_clear(&t);
+    for (int i = 0; i < M; i++)
+        mode_clear(&modes[i]);
+    free(modes);
+    fmpq_mat_clear(A);
+    fmpq_mat_clear(b);
+    fmpq_mat_clear(Mm);
+    return st;
+}
+
 int scheme_linear_modes(hl_alg *images, const hl_alg *hess, const hl_alg *g0, hl_system *sys,
                         hl_error *err)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
-    int N = hl_system_ndof(sys), M = 2 * N, st = HL_OK, nmodes = 0, j, k;
+    int N = hl_system_ndof(sys), M = 2 * N, st = HL_OK, nmodes = 0;
     fmpq_mat_t A, b, Mm, WC, WS, WK, Ab;
     fmpq_mat_init(A, M, M);
     fmpq_mat_init(b, M, 1);
@@ -434,16 +510,7 @@ int scheme_linear_modes(hl_alg *images, const hl_alg *hess, const hl_alg *g0, hl
     mode *modes = malloc((size_t)M * sizeof *modes);
     for (int i = 0; i < M; i++)
         mode_init(&modes[i], M);
-    coupled_pair(&j, &k, hess, N, ctx);
-    if (!rational_field(A, b, hess, g0, N, ctx)) {
-        st = hl_error_set(err, HL_EUNSUP, NULL, -1, 0,
-                          "H couples the pairs of %s and %s and has symbolic coefficients: "
-                          "the closed form of coupled pairs needs rational ones",
-                          hl_system_coord(sys, j), hl_system_coord(sys, k));
-        goto done;
-    }
-    fmpq_mat_mul(Mm, A, A);
-    if ((st = decompose(modes, &nmodes, Mm, err)) != HL_OK)
+    if ((st = field_modes(modes, &nmodes, A, b, Mm, hess, g0, sys, err)) != HL_OK)
         goto done;
     /* W_C = [I | 0], W_S = [A | b], W_K = [0 | A b]: the coefficient of
      * C, S, K in the image is P W (z, 1). */

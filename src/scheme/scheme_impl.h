@@ -51,5 +51,8 @@ void scheme_point(const hl_expr **v, hl_system *sys);
  * gradient at 0; HL_EUNSUP, naming the reason, where no closed form is made. */
 int scheme_linear_modes(hl_alg *images, const hl_alg *hess, const hl_alg *g0, hl_system *sys,
                         hl_error *err);
+/* Its normal modes as text (linear_flow.h: hl_scheme_linear_modes). */
+int scheme_linear_modes_text(char **text, const hl_alg *hess, const hl_alg *g0, hl_system *sys,
+                             hl_error *err);
 
 #endif

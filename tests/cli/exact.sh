@@ -127,4 +127,15 @@ python3 -c 'import json, sys; d = json.load(open(sys.argv[1]))
 assert d["max_error"] < 1e-11 and d["max_abs_dH"] < 1e-11, d' "$tmp/out" && ok ||
     bad "coupled exact run not at round-off: $(cat "$tmp/out")"
 
+# the normal modes of a coupled H, as printed above the map: the
+# frequencies sqrt of the eigenvalues of the potential's Hessian [[1,1],[1,4]]
+# ((5 -+ sqrt 13)/2), a denested root, and a hyperbolic mode
+run 0 exact -H '(px^2+py^2)/2+(x^2+4*y^2)/2 + x*y'
+has_line "normal modes: elliptic w = sqrt(5/2 - sqrt(13)/2); elliptic w = sqrt(5/2 + sqrt(13)/2)"
+run 0 exact -H '(px^2+py^2)/2 + (x^2+2*y^2)/2 + x*y'
+has_line "normal modes: elliptic w = (-1/2 + sqrt(5)/2); elliptic w = (1/2 + sqrt(5)/2)"
+run 0 exact -H '(px^2+py^2)/2 - (x^2+y^2)/2 + 2*x*y'
+has_line "normal modes: hyperbolic w = sqrt(3); elliptic w = 1"
+run 0 exact -H '(px^2+py^2)/2+(x^2+4*y^2)/2'
+if grep -q "normal modes" "$tmp/out"; then bad "normal modes printed for uncoupled pairs"; else ok; fi
 finish
