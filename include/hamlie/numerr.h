@@ -51,8 +51,13 @@ void hl_numerr_clear(hl_numerr *r);
 
 /* The same analysis for a stepper that is not a scheme of the scheme
  * language but gives its own series at z: psi[k*2N + i] = [D^k] psi_D(z)_i,
- * k = 0..n (e.g. hl_exact_flow_series).  K needs the stepper at points
- * other than z and is not computed: r->K is NaN. */
+ * k = 0..n (e.g. hl_exact_flow_series).  The flow's coefficients, v_k,
+ * leading and order as hl_numerr_compute's, except the thresholds: such a
+ * series is not exact where a coefficient vanishes at z by symmetry, so
+ * the size of order k in the threshold is at least the upper concave hull
+ * of log max_i(|psi_k,i| + |flow_k,i|) over k = 0..n (the same where that
+ * is concave in k, as for geometric or factorial decay).  K needs the
+ * stepper at points other than z and is not computed: r->K is NaN. */
 int hl_numerr_from_series(hl_numerr *r, hl_system *sys, const double *z, const double *psi,
                           int n, hl_error *err);
 

@@ -40,7 +40,10 @@
  *    divide by D + eps, whose leading coefficient eps is not invertible.)
  *
  * 4. Leading k and order: v_k is non-zero when its max norm exceeds
- *    HL_NUMERR_REL_TOL * k! * max_i(|psi_k,i| + |flow_k,i|) (numerr.h).
+ *    HL_NUMERR_REL_TOL * k! * max_i(|psi_k,i| + |flow_k,i|) (numerr.h); for
+ *    a series given from elsewhere (hl_numerr_from_series) the size of
+ *    order k is at least the upper concave hull of the log sizes at k
+ *    (hull_thresholds).
  */
 #include <float.h>
 #include <math.h>
@@ -774,6 +777,16 @@ static int numerr_start(hl_numerr *r, hl_system *sys, int n, hl_error *err)
     return HL_OK;
 }
 
+/* The least k >= 2 with v_k above its threshold, and the order. */
+static void find_leading(hl_numerr *r)
+{
+    r->leading = 0;
+    for (int k = 2; k <= r->n && r->leading == 0; k++)
+        if (r->vnorm[k] > r->thresh[k])
+            r->leading = k;
+    r->order = r->leading ? r->leading - 1 : r->n;
+}
+
 /* v_k = k! (psi_k - flow_k), their thresholds, the leading k and the order,
  * from r->psi; the flow's coefficients by Taylor mode. */
 static int fields(hl_numerr *r, hl_system *sys, const double *z, hl_error *err)
@@ -794,11 +807,56 @@ static int fields(hl_numerr *r, hl_system *sys, const double *z, hl_error *err)
             r->vnorm[k] = fmax(r->vnorm[k], fabs(r->v[k * m2 + i]));
         }
         r->thresh[k] = HL_NUMERR_REL_TOL * fact * scale;
-        if (k >= 2 && r->leading == 0 && r->vnorm[k] > r->thresh[k])
-            r->leading = k;
     }
-    r->order = r->leading ? r->leading - 1 : n;
+    find_leading(r);
     return HL_OK;
+}
+
+/* The thresholds of a series from elsewhere (hl_numerr_from_series): the
+ * size of order k is taken as the upper concave hull of log(scale_j) over
+ * j = 0..n at k (scale_j = thresh_j / (tol j!)), extended by its end
+ * segments.  Why: such a series is not computed exactly at zeros, so a
+ * coefficient that vanishes at z by symmetry (q = 0 for V = q^4/4:
+ * [D^2] = [D^3] = 0) is round-off of the size of its neighbours, not of
+ * itself, and would show as a spurious error against a threshold of
+ * nothing.  Where log(scale) is concave in k (geometric or factorial
+ * decay) the hull is scale itself and nothing changes. */
+static void hull_thresholds(hl_numerr *r)
+{
+    int n = r->n, nv = 0;
+    int *h = hl_xmalloc((size_t)(n + 1) * sizeof *h); /* hull vertices */
+    double *L = hl_xmalloc((size_t)(n + 1) * sizeof *L), fact = 1;
+    for (int k = 0; k <= n; k++) {
+        if (k > 0)
+            fact *= k;
+        double sc = r->thresh[k] / (HL_NUMERR_REL_TOL * fact);
+        L[k] = sc > 1e-290 ? log(sc) : -INFINITY;
+    }
+    for (int k = 0; k <= n; k++) {
+        if (L[k] == -INFINITY)
+            continue;
+        /* pop while the last vertex is not above the chord h[nv-2] -> k */
+        while (nv >= 2) {
+            int a = h[nv - 2], b = h[nv - 1];
+            if ((L[b] - L[a]) * (k - a) > (L[k] - L[a]) * (b - a))
+                break;
+            nv--;
+        }
+        h[nv++] = k;
+    }
+    fact = 1;
+    for (int k = 0, seg = 0; k <= n && nv >= 2; k++) {
+        if (k > 0)
+            fact *= k;
+        while (seg < nv - 2 && k > h[seg + 1])
+            seg++;
+        int a = h[seg], b = h[seg + 1];
+        double Lk = L[a] + (L[b] - L[a]) * (k - a) / (b - a);
+        r->thresh[k] = fmax(r->thresh[k], HL_NUMERR_REL_TOL * fact * exp(Lk));
+    }
+    free(h);
+    free(L);
+    find_leading(r);
 }
 
 int hl_numerr_compute(hl_numerr *r, const hl_scheme *s, const double *z, int n, hl_error *err)
@@ -848,5 +906,8 @@ int hl_numerr_from_series(hl_numerr *r, hl_system *sys, const double *z, const d
     memcpy(r->psi, psi, (size_t)(n + 1) * 2 * r->N * sizeof *psi);
     for (int i = 0; i < n * 2 * r->N; i++)
         r->K[i] = NAN;
-    return fields(r, sys, z, err);
+    st = fields(r, sys, z, err);
+    if (st == HL_OK)
+        hull_thresholds(r);
+    return st;
 }

@@ -51,7 +51,8 @@ const char cmd_errors_help[] =
     "                       of the D^k coefficients: round-off).  --order 2..60\n"
     "                       --scheme exact for an H without a closed form (1 dof,\n"
     "                       the orbit by quadrature) is analysed this way only,\n"
-    "                       from its own series at z (K is not computed)\n"
+    "                       from its own series at z (--order 2..8; K is not\n"
+    "                       computed)\n"
     "  --at 'q=1.3,p=0'     the point: every phase variable, a number each\n"
     "  --pairs x:px,y:py    the canonical pairs\n"
     "  --param k=2          give a parameter a value (repeatable)\n"
@@ -817,6 +818,10 @@ static void write_numeric_text(hl_buf *out, const hl_numerr *nr, const double *z
                       nr->order, nr->n);
     hl_buf_puts(out, "round-off threshold for v_k: 1e-10 · k! · max_i(|[D^k] psi_i| + "
                      "|g^k z_i / k!|)\n");
+    if (isnan(nr->K[0])) /* a series from elsewhere: hl_numerr_from_series */
+        hl_buf_puts(out, "  (at least its upper concave hull in log over k: a coefficient "
+                         "that vanishes at z is\n  round-off of its neighbours' size in a "
+                         "series not computed exactly)\n");
     if (isnan(nr->K[0])) {
         hl_buf_puts(out, "K(D): not computed (it needs the scheme at other points than z)\n");
         return;
@@ -927,6 +932,15 @@ static int exact_numerr(hl_numerr *nr, result *R, const double *z, hl_error *err
     hl_exact_flow *f = NULL;
     double *psi = hl_xmalloc((size_t)(R->n + 1) * R->m * sizeof *psi);
     int st = hl_exact_flow_new(&f, R->sys, err);
+    /* beyond this order the coefficients show the orbit table's pieces
+     * (exact.h), not an error of the scheme: refused rather than reported */
+    if (st == HL_OK && !hl_exact_flow_is_linear(f) && R->n > HL_EXACT_SERIES_ACCURATE)
+        st = hl_error_set(err, HL_ELIMIT, NULL, -1, 0,
+                          "its series comes from the orbit table's Taylor pieces of degree "
+                          "%d and is accurate to round-off up to D^%d: --order at most %d, "
+                          "not %d",
+                          HL_EXACT_SERIES_DEGREE, HL_EXACT_SERIES_ACCURATE,
+                          HL_EXACT_SERIES_ACCURATE, R->n);
     if (st == HL_OK)
         st = hl_exact_flow_series(psi, z, R->n, f, err);
     if (st == HL_OK)

@@ -21,7 +21,7 @@
 #include "base/buf.h"
 #include "exact/exact_impl.h"
 
-#define ORD 20 /* Taylor order of the table polynomials */
+#define ORD HL_EXACT_SERIES_DEGREE /* Taylor order of the table polynomials (20) */
 #define NC (ORD + 1)
 
 struct hl_exact_flow {
@@ -202,8 +202,10 @@ int hl_exact_turning_point_(double *qt, double q0, double E, hl_tape *Ht, hl_err
         step *= 2;
         if (fabs(b - q0) > 1e8)
             return hl_error_set(err, HL_EDOM, NULL, -1, 0,
-                                "unbounded orbit: H(q,0) stays below E = %.17g for q > %g", E,
-                                q0);
+                                "unbounded orbit: H(q,0) does not exceed E = %.17g for q > %g "
+                                "(an orbit over the barrier, or on a separatrix if E is the "
+                                "barrier's top)",
+                                E, q0);
     }
     for (int i = 0; i < 200 && b - a > 0; i++) {
         double c = 0.5 * (a + b);
@@ -524,29 +526,43 @@ static int orbit_step(double *z, double dt, hl_exact_flow *f, hl_error *err)
     return HL_OK;
 }
 
-/* The step's series at z.  The scheme is a time shift along the tabulated
- * orbit, psi_D(z) = orbit(t(z) + D), so its series is the orbit's Taylor
- * series at the table's point for z's time, orbit(t(z)) = psi_0(z): what
- * distinguishes it from the flow's series at z is that point.  (Shifting
- * the table's polynomial piece to t(z) instead gives the same map, but as a
- * series only to about D^11: the pieces have degree 20 and are centred at
- * their samples.) */
+/* The step's series at z, from the step's own construction: the step is a
+ * time shift along the tabulated orbit, psi_D(z) = P(s + D) with P the
+ * table's polynomial piece for z's time t(z) and s the offset of t(z) in
+ * it (orbit_step for dt = D, the same piece while t(z) + D stays in it), so
+ * [D^k] psi_D(z) = sum_{j >= k} binom(j, k) c_j s^(j-k): the piece
+ * re-expanded at s.  Nothing here is the Taylor series at z: compared with
+ * the flow's, it checks the action-angle map (z's time on the table) and the
+ * piece (its samples, its coefficients) at every order.  The pieces have
+ * degree ORD, so the series stops there; its coefficient k also carries the
+ * piece's truncation, about binom(ORD+1, k) |s / rho|^(ORD+1-k) relative
+ * (rho the radius of convergence), which grows with k (figures in exact.h). */
 static int orbit_series(double *coef, const double *z, int n, hl_exact_flow *f, hl_error *err)
 {
-    double th, tl, s, w[2];
+    if (n > ORD)
+        return hl_error_set(err, HL_EUNSUP, NULL, -1, 0,
+                            "the exact scheme's orbit table is made of Taylor polynomials of "
+                            "degree %d in time: its series stops at D^%d (asked for D^%d)",
+                            ORD, ORD, n);
+    double th, tl, s;
     int st = orbit_time(&th, &tl, z, f, err);
     if (st != HL_OK)
         return st;
     const double *c = piece(&s, th, tl, f);
-    poly_eval(w, NULL, c, s);
-    double *a = hl_xcalloc(2 * ((size_t)n + 1), sizeof *a);
-    a[0] = w[0];
-    a[n + 1] = w[1];
-    st = hl_tape_taylor_ode_d(a, n, f->vf, err);
-    for (int k = 0; k <= n && st == HL_OK; k++)
-        coef[k * 2] = a[k], coef[k * 2 + 1] = a[n + 1 + k];
-    free(a);
-    return st;
+    for (int v = 0; v < 2; v++)
+        for (int k = 0; k <= n; k++) {
+            /* sum_{j=k..ORD} binom(j, k) c_j s^(j-k), by Horner from the top */
+            double a = 0, b = 1; /* b = binom(j, k), j from k up */
+            for (int j = k + 1; j <= ORD; j++)
+                b = b * j / (j - k);
+            for (int j = ORD; j >= k; j--) {
+                a = a * s + b * c[v * NC + j];
+                if (j > k)
+                    b = b * (j - k) / j;
+            }
+            coef[k * 2 + v] = a;
+        }
+    return HL_OK;
 }
 
 /* (A^k (z, 1))/k! with the augmented matrix: the series of exp(D A). */
