@@ -136,6 +136,12 @@ int hl_expr_symbols(const hl_expr *e, const char **names, int max);
 /* Does e mention the symbol? */
 int hl_expr_has_symbol(const hl_expr *e, const char *name);
 
+/* A rough cost of evaluating e[0..n-1] once in double, a node shared
+ * between them counted once: 1 an arithmetic node, 4 a division, 20 a
+ * function, 40 a power that is not an integer one (the calls dominate).
+ * For choosing between two formulas of the same value. */
+double hl_expr_cost(const hl_expr *const *e, int n);
+
 /* Replace each symbol names[i] by vals[i] (simultaneously). */
 const hl_expr *hl_expr_subst(hl_pool *pool, const hl_expr *e, int n,
                              const char *const *names, const hl_expr *const *vals);
@@ -143,6 +149,16 @@ const hl_expr *hl_expr_subst(hl_pool *pool, const hl_expr *e, int n,
 /* Derivative with respect to a symbol, lightly simplified (0 and 1 folded,
  * rational constants combined) so that tapes built from it stay small. */
 const hl_expr *hl_expr_diff(hl_pool *pool, const hl_expr *e, const char *var);
+
+/* Taylor coefficients in a symbol: out[k] = [t^k] e|_(var = at + t), k =
+ * 0..K, as expressions over the other symbols (and at's), folded like
+ * hl_expr_diff: a coefficient that vanishes is the number 0 (so a
+ * polynomial's stop at its degree).  By the recurrences of Taylor mode
+ * (tape.h), every function and power included: O(K^2) nodes for each node
+ * of e that depends on var (O(K) where the arguments are linear in it, as
+ * sin(q + s h)).  A node that does not depend on var is kept as it is. */
+void hl_expr_taylor(const hl_expr **out, hl_pool *pool, const hl_expr *e, const char *var,
+                    const hl_expr *at, int K);
 
 /* Evaluate in double with the given symbol values.  Errors (HL_EINVAL) on a
  * symbol without a value; the result may be inf or nan, which the caller

@@ -62,6 +62,40 @@ int hl_expr_has_symbol(const hl_expr *e, const char *name)
     return r;
 }
 
+/* ---- cost --------------------------------------------------------------------- */
+
+static double cost(hl_memo *seen, const hl_expr *e)
+{
+    if (hl_memo_get(seen, e))
+        return 0;
+    hl_memo_put(seen, e);
+    double c;
+    switch (e->kind) {
+    case HL_FUN: c = 20; break;
+    case HL_DIV: c = 4; break;
+    case HL_POW: /* an integer power is a few products, any other exp(b log a) */
+        c = e->b->kind == HL_NUM && fmpz_is_one(fmpq_denref(e->b->num)) ? 2 : 40;
+        break;
+    case HL_NEG:
+    case HL_ADD:
+    case HL_SUB:
+    case HL_MUL: c = 1; break;
+    default: c = 0; /* NUM, SYM, PI: operands */
+    }
+    return c + (e->a ? cost(seen, e->a) : 0) + (e->b ? cost(seen, e->b) : 0);
+}
+
+double hl_expr_cost(const hl_expr *const *e, int n)
+{
+    hl_memo seen;
+    hl_memo_init(&seen);
+    double c = 0;
+    for (int i = 0; i < n; i++)
+        c += cost(&seen, e[i]);
+    hl_memo_clear(&seen);
+    return c;
+}
+
 /* ---- substitution -------------------------------------------------------------- */
 
 typedef struct subst_walk {
