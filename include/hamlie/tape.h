@@ -246,6 +246,11 @@ void hl_newton_set_output(hl_newton *nw, hl_tape *Z);
 void hl_newton_free(hl_newton *nw); /* NULL is a no-op */
 int hl_newton_unknowns(const hl_newton *nw);
 
+/* With an output tape: its values at the solution after HL_NEWTON_OK (the
+ * convergence test computed them there; nz values owned by nw, valid until
+ * the next solve), so a caller need not evaluate Z again.  NULL without. */
+const double *hl_newton_output(const hl_newton *nw);
+
 /* U (m values) from x; *iters: the iterations taken (the failing one);
  * *last: max |dU| of the last iteration. */
 hl_newton_status hl_newton_solve(double *U, int *iters, double *last, const double *x,

@@ -914,11 +914,13 @@ void hl_tape_jit_release(void *result)
 }
 
 /* ---- Newton's method, compiled (hl_newton_jit) ---------------------------
- * int hl_jit_newton(const double *x, double *U, int *iters, double *last):
+ * int hl_jit_newton(const double *x, double *U, int *iters, double *last,
+ *                   double *Z):
  * newton.c's hl_newton_solve as one function, the same operations in the
  * same order: the three tapes inlined (each with its own register locals),
  * U in locals, the LU factors in local arrays (partial pivoting indexes
- * them at run time). */
+ * them at run time); with an output tape, its last values in Z (newton.c's
+ * zprev, so hl_newton_output reads them after either). */
 
 typedef struct nj {
     gcc_jit_context *c;
@@ -1126,13 +1128,14 @@ static void build_newton(nj *N, const hl_newton *nw)
     int m = nw->m;
     gcc_jit_type *cdblp = gcc_jit_type_get_pointer(gcc_jit_type_get_const(N->dbl));
     gcc_jit_type *dblp = gcc_jit_type_get_pointer(N->dbl);
-    gcc_jit_param *prm[4] = {gcc_jit_context_new_param(c, NULL, cdblp, "x"),
+    gcc_jit_param *prm[5] = {gcc_jit_context_new_param(c, NULL, cdblp, "x"),
                              gcc_jit_context_new_param(c, NULL, dblp, "U"),
                              gcc_jit_context_new_param(c, NULL, gcc_jit_type_get_pointer(N->intt),
                                                        "iters"),
-                             gcc_jit_context_new_param(c, NULL, dblp, "last")};
+                             gcc_jit_context_new_param(c, NULL, dblp, "last"),
+                             gcc_jit_context_new_param(c, NULL, dblp, "Z")};
     N->fun = gcc_jit_context_new_function(c, NULL, GCC_JIT_FUNCTION_EXPORTED, N->intt,
-                                          "hl_jit_newton", 4, prm, 0);
+                                          "hl_jit_newton", 5, prm, 0);
     N->x = gcc_jit_param_as_rvalue(prm[0]), N->U = gcc_jit_param_as_rvalue(prm[1]);
     N->iters = gcc_jit_param_as_rvalue(prm[2]), N->last = gcc_jit_param_as_rvalue(prm[3]);
     static const char *prefix[4] = {"s", "f", "j", "z"};
@@ -1162,8 +1165,7 @@ static void build_newton(nj *N, const hl_newton *nw)
     N->un = gcc_jit_function_new_local(N->fun, NULL, N->dbl, "un");
     N->tmp = gcc_jit_function_new_local(N->fun, NULL, N->dbl, "tmp");
     if (nw->Z != NULL) {
-        gcc_jit_type *az = gcc_jit_context_new_array_type(c, NULL, N->dbl, nw->nz);
-        N->zprev = gcc_jit_function_new_local(N->fun, NULL, az, "zprev");
+        N->zprev = gcc_jit_param_as_lvalue(prm[4]);
         N->zd = gcc_jit_function_new_local(N->fun, NULL, N->dbl, "zd");
         N->zs = gcc_jit_function_new_local(N->fun, NULL, N->dbl, "zs");
     }

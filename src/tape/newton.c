@@ -77,6 +77,8 @@ static void output_move(double *d, double *s, hl_newton *nw)
 
 int hl_newton_unknowns(const hl_newton *nw) { return nw->m; }
 
+const double *hl_newton_output(const hl_newton *nw) { return nw->zprev; }
+
 /* A = LU in place with partial pivoting (piv: the row swaps; dinv: the
  * reciprocals of U's diagonal, so that solving multiplies); 0 if singular.
  * Every operation is also done when a multiplier is 0, as the compiled
@@ -134,7 +136,7 @@ hl_newton_status hl_newton_solve(double *U, int *iters, double *last_dn, const d
                                  hl_newton *nw)
 {
     if (nw->jit_fn != NULL)
-        return (hl_newton_status)nw->jit_fn(x, U, iters, last_dn);
+        return (hl_newton_status)nw->jit_fn(x, U, iters, last_dn, nw->zprev);
     int m = nw->m, nx = nw->nx;
     double *in = nw->in, *A = nw->A, *b = nw->b, *out = nw->out;
     *iters = 0;

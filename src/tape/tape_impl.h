@@ -66,7 +66,8 @@ struct hl_tape {
 };
 
 /* newton.c: hl_newton */
-typedef int (*hl_newton_jit_fn)(const double *x, double *U, int *iters, double *last);
+typedef int (*hl_newton_jit_fn)(const double *x, double *U, int *iters, double *last,
+                                double *Z);
 struct hl_newton {
     hl_tape *start, *F, *FJ; /* borrowed */
     hl_tape *Z;              /* convergence on Z(x, U) if not NULL (borrowed) */
