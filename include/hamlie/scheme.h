@@ -40,7 +40,10 @@
  *            Z - z = O(D) (average vector field, Itoh-Abe), is a polynomial
  *            of degree <= k in s, so the series to O(D^n) is exact.  For a
  *            user's integrand this is assumed, not checked.
- *   numeric: Gauss-Legendre.
+ *   numeric: a rule exact for polynomials of degree 2 HL_SCHEME_GAUSS_NODES
+ *            - 1 in s: Gauss-Legendre, or the integrand's Taylor series at
+ *            s = 1/2 (even terms) where that costs at most half (one sin a
+ *            residual for the pendulum's average vector field, not eight).
  * Both readings consume only this structure; a reading never re-parses.
  *
  * Lifetime: an hl_scheme borrows its system (expressions live in the
@@ -197,9 +200,10 @@ int hl_scheme_expand(hl_series *Z, const hl_scheme *s, int n, hl_error *err);
  * hl_expr_diff compiled with F, is evaluated and factored at the start and
  * again only when convergence slows; it stops when a correction is at
  * rounding level), starting from the unknowns' values at D = 0 with (Q, P)
- * predicted by explicit Euler.  Integrals: Gauss-Legendre with
- * HL_SCHEME_GAUSS_NODES nodes.  An equation that divides by an expression
- * in the unknowns is first put in exact canonical form (alg.h), which
+ * predicted by explicit Euler; the next point is the one Newton's
+ * convergence test computed (hl_newton_output).  Integrals: the numeric
+ * rule above.  An equation that divides by an expression in the unknowns
+ * is first put in exact canonical form (alg.h), which
  * removes 0/0 such as the paper's (P^2 - p^2)/(P - p) at P = p.  Every
  * parameter must have a value.  The stepper keeps no reference to the
  * scheme (its tapes are self-contained); it borrows nothing. */

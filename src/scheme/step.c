@@ -69,12 +69,13 @@ int hl_scheme_stepper_jit(hl_scheme_stepper *st, long nsteps)
         return 0;
     if (st->all_explicit)
         return jit_if_it_pays(st->tape, nsteps);
-    int n = jit_if_it_pays(st->after, nsteps);
+    /* the next point is Newton's output (hl_newton_output): st->after is
+     * not evaluated per step */
     if (!hl_newton_jit_active(st->nw) && nsteps >= NEWTON_JIT_MIN_STEPS)
         hl_newton_jit(st->nw, NULL); /* on failure the interpreter goes on */
     if (hl_newton_jit_active(st->nw))
-        return n + 3; /* start, F and FJ, in one function */
-    return n + jit_if_it_pays(st->tape, nsteps) + jit_if_it_pays(st->jac, nsteps) +
+        return 4; /* start, F, FJ and the next point, in one function */
+    return jit_if_it_pays(st->tape, nsteps) + jit_if_it_pays(st->jac, nsteps) +
            jit_if_it_pays(st->start, nsteps);
 }
 
@@ -122,7 +123,49 @@ static void gauss_legendre(double *s, double *w, int n)
     }
 }
 
-/* The equations with the integrals replaced by the Gauss-Legendre sums. */
+/* int_0^1 f(s) ds by Gauss-Legendre with n nodes. */
+static const hl_expr *gauss_rule(const hl_expr *f, int n, hl_pool *pool)
+{
+    double sn[HL_SCHEME_GAUSS_NODES], wn[HL_SCHEME_GAUSS_NODES];
+    gauss_legendre(sn, wn, n);
+    const char *sv = HL_SCHEME_S;
+    const hl_expr *sum = NULL;
+    for (int i = 0; i < n; i++) {
+        const hl_expr *node = num_d(pool, sn[i]);
+        const hl_expr *t = hl_mul(pool, num_d(pool, wn[i]), hl_expr_subst(pool, f, 1, &sv, &node));
+        sum = sum ? hl_add(pool, sum, t) : t;
+    }
+    return sum;
+}
+
+/* int_0^1 f(s) ds from f's Taylor series at s = 1/2 to degree K:
+ * sum over even k of c_k / (2^k (k + 1)); the odd terms integrate to 0, so
+ * an even K is exact for polynomials of degree K + 1. */
+static const hl_expr *midpoint_taylor_rule(const hl_expr *f, int K, hl_pool *pool)
+{
+    const hl_expr **c = hl_xmalloc((size_t)(K + 1) * sizeof *c), *sum = NULL;
+    hl_expr_taylor(c, pool, f, HL_SCHEME_S, hl_num_frac(pool, 1, 2), K);
+    for (int k = 0; k <= K; k += 2) {
+        if (c[k]->kind == HL_NUM && fmpq_is_zero(c[k]->num))
+            continue;
+        const hl_expr *t =
+            hl_mul(pool, hl_num_frac(pool, 1, (1UL << k) * (unsigned long)(k + 1)), c[k]);
+        sum = sum ? hl_add(pool, sum, t) : t;
+    }
+    free(c);
+    return sum ? sum : hl_num_si(pool, 0);
+}
+
+/* The equations with each integral replaced by a rule exact for
+ * polynomials of degree 2 HL_SCHEME_GAUSS_NODES - 1 in s (scheme.h):
+ * Gauss-Legendre, or the Taylor series at s = 1/2, which computes each
+ * function of the integrand once (the pendulum's average vector field: one
+ * sin and cos a residual instead of eight) and is exact for a polynomial
+ * integrand of any degree it reaches.  The series only where it costs at
+ * most half of the Gauss rule (hl_expr_cost): where the two are close
+ * (Morse's product of exponentials, Kepler's powers) the Gauss rule rounds
+ * better (Morse, D = 1: 1.5e-16 against 1.1e-15 relative) and converges
+ * whatever the nearest singularity of the integrand (t-avf-rule). */
 static void quadrature(const hl_expr **lhs, const hl_expr **rhs, const hl_scheme *s,
                        hl_pool *pool)
 {
@@ -130,20 +173,12 @@ static void quadrature(const hl_expr **lhs, const hl_expr **rhs, const hl_scheme
         lhs[i] = s->lhs[i], rhs[i] = s->rhs[i];
     if (s->nint == 0)
         return;
-    int n = HL_SCHEME_GAUSS_NODES;
-    double sn[HL_SCHEME_GAUSS_NODES], wn[HL_SCHEME_GAUSS_NODES];
-    gauss_legendre(sn, wn, n);
     const hl_expr **val = hl_xmalloc((size_t)s->nint * sizeof *val);
-    const char *sv = HL_SCHEME_S;
     for (int t = 0; t < s->nint; t++) {
-        const hl_expr *sum = NULL;
-        for (int i = 0; i < n; i++) {
-            const hl_expr *node = num_d(pool, sn[i]);
-            const hl_expr *f = hl_mul(pool, num_d(pool, wn[i]),
-                                      hl_expr_subst(pool, s->int_body[t], 1, &sv, &node));
-            sum = sum ? hl_add(pool, sum, f) : f;
-        }
-        val[t] = sum;
+        const hl_expr *gl = gauss_rule(s->int_body[t], HL_SCHEME_GAUSS_NODES, pool);
+        const hl_expr *ty =
+            midpoint_taylor_rule(s->int_body[t], 2 * HL_SCHEME_GAUSS_NODES - 2, pool);
+        val[t] = 2 * hl_expr_cost(&ty, 1) <= hl_expr_cost(&gl, 1) ? ty : gl;
     }
     for (int i = 0; i < s->m; i++) {
         lhs[i] = hl_expr_subst(pool, lhs[i], s->nint, (const char *const *)s->int_name, val);
@@ -545,13 +580,18 @@ int hl_scheme_step(hl_scheme_stepper *st, double *z, double D, double t, hl_erro
         int rc = newton(st, D, t, err);
         if (rc != HL_OK)
             return rc;
-        memcpy(st->in + 2 * N + 1, st->U, (size_t)st->m * sizeof *st->U);
-        hl_tape_eval_d(st->out, st->in, st->after);
-        if (!all_finite(st->out, 2 * N))
+        /* the next point: Newton's convergence test has just computed it */
+        const double *Z = hl_newton_output(st->nw);
+        if (Z == NULL) {
+            memcpy(st->in + 2 * N + 1, st->U, (size_t)st->m * sizeof *st->U);
+            hl_tape_eval_d(st->out, st->in, st->after);
+            Z = st->out;
+        }
+        if (!all_finite(Z, 2 * N))
             return hl_error_set(err, HL_EDOM, NULL, -1, 0,
                                 "step %ld (t = %.17g, D = %g): the next point is not finite",
                                 st->steps + 1, t, D);
-        memcpy(z, st->out, (size_t)(2 * N) * sizeof *z);
+        memcpy(z, Z, (size_t)(2 * N) * sizeof *z);
     }
     st->steps++;
     return HL_OK;
