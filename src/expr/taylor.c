@@ -150,9 +150,46 @@ static void pow_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *
     }
 }
 
+/* Is the series a[0] + a[1] t (the argument of sin(q + s h))? */
+static int is_linear(const taylor_walk *w, const hl_expr *const *a)
+{
+    for (int k = 2; k <= w->K; k++)
+        if (!hl_fold_is_num(a[k], 0))
+            return 0;
+    return 1;
+}
+
+/* pw[k] = a1^k / k!, each from two lower ones, pw[h] pw[k-h] / binom(k, h)
+ * with h = k/2, so that order k waits for about log2 k products rather
+ * than k (the recurrences' chain): for f(a0 + a1 t) with f' = +-f or a
+ * sin/cos pair, [t^k] is +-f^(k)(a0) pw[k]. */
+static void scaled_powers(taylor_walk *w, const hl_expr **pw, const hl_expr *a1)
+{
+    pw[0] = hl_num_si(w->pool, 1);
+    for (int k = 1; k <= w->K; k++) {
+        if (k == 1) {
+            pw[1] = a1;
+            continue;
+        }
+        int h = k / 2;
+        unsigned long binom = 1;
+        for (int j = 1; j <= h; j++)
+            binom = binom * (unsigned long)(k - h + j) / (unsigned long)j;
+        pw[k] = hl_fold_mul(w->pool, num(w, 1, binom), hl_fold_mul(w->pool, pw[h], pw[k - h]));
+    }
+}
+
 static void exp_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *a)
 {
     r[0] = hl_call(w->pool, HL_EXP, a[0]);
+    if (is_linear(w, a)) {
+        const hl_expr **pw = hl_xmalloc((size_t)(w->K + 1) * sizeof *pw);
+        scaled_powers(w, pw, a[1]);
+        for (int k = 1; k <= w->K; k++)
+            r[k] = hl_fold_mul(w->pool, r[0], pw[k]);
+        free(pw);
+        return;
+    }
     for (int k = 1; k <= w->K; k++)
         r[k] = weighted(w, a, r, k, 1, k);
 }
@@ -188,6 +225,22 @@ static void sincos_series(taylor_walk *w, const hl_expr **s, const hl_expr **c,
     hl_pool *pool = w->pool;
     s[0] = hl_call(pool, hyperbolic ? HL_SINH : HL_SIN, a[0]);
     c[0] = hl_call(pool, hyperbolic ? HL_COSH : HL_COS, a[0]);
+    if (is_linear(w, a)) {
+        /* s[k] = sin^(k)(a0) a1^k/k!: sin, cos, -sin, -cos, ...; c[k]
+         * likewise from cos; no signs for sinh, cosh */
+        const hl_expr **pw = hl_xmalloc((size_t)(w->K + 1) * sizeof *pw);
+        scaled_powers(w, pw, a[1]);
+        for (int k = 1; k <= w->K; k++) {
+            int odd = k % 2, neg = !hyperbolic && (k % 4 == 2 || k % 4 == 3);
+            const hl_expr *sk = hl_fold_mul(pool, odd ? c[0] : s[0], pw[k]);
+            const hl_expr *ck = hl_fold_mul(pool, odd ? s[0] : c[0], pw[k]);
+            s[k] = neg ? hl_fold_neg(pool, sk) : sk;
+            /* cos^(k): cos, -sin, -cos, sin */
+            c[k] = !hyperbolic && (k % 4 == 1 || k % 4 == 2) ? hl_fold_neg(pool, ck) : ck;
+        }
+        free(pw);
+        return;
+    }
     for (int k = 1; k <= w->K; k++) {
         s[k] = weighted(w, a, c, k, 1, k);
         const hl_expr *t = weighted(w, a, s, k, 1, k);

@@ -143,17 +143,25 @@ static const hl_expr *gauss_rule(const hl_expr *f, int n, hl_pool *pool)
  * an even K is exact for polynomials of degree K + 1. */
 static const hl_expr *midpoint_taylor_rule(const hl_expr *f, int K, hl_pool *pool)
 {
-    const hl_expr **c = hl_xmalloc((size_t)(K + 1) * sizeof *c), *sum = NULL;
+    const hl_expr **c = hl_xmalloc((size_t)(K + 1) * sizeof *c);
     hl_expr_taylor(c, pool, f, HL_SCHEME_S, hl_num_frac(pool, 1, 2), K);
-    for (int k = 0; k <= K; k += 2) {
-        if (c[k]->kind == HL_NUM && fmpq_is_zero(c[k]->num))
-            continue;
-        const hl_expr *t =
-            hl_mul(pool, hl_num_frac(pool, 1, (1UL << k) * (unsigned long)(k + 1)), c[k]);
-        sum = sum ? hl_add(pool, sum, t) : t;
+    int n = 0;
+    for (int k = 0; k <= K; k += 2)
+        if (!(c[k]->kind == HL_NUM && fmpq_is_zero(c[k]->num)))
+            c[n++] = hl_mul(pool, hl_num_frac(pool, 1, (1UL << k) * (unsigned long)(k + 1)), c[k]);
+    /* summed pairwise: the terms are independent, and a tree of sums waits
+     * for log2 n additions where a chain waits for n */
+    while (n > 1) {
+        int m = 0;
+        for (int i = 0; i + 1 < n; i += 2)
+            c[m++] = hl_add(pool, c[i], c[i + 1]);
+        if (n % 2)
+            c[m++] = c[n - 1];
+        n = m;
     }
+    const hl_expr *sum = n ? c[0] : hl_num_si(pool, 0);
     free(c);
-    return sum ? sum : hl_num_si(pool, 0);
+    return sum;
 }
 
 /* The equations with each integral replaced by a rule exact for
