@@ -134,6 +134,10 @@ static void pow_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *
                 tmp[k] = k == 0 ? hl_num_si(pool, 1) : w->zero;
             div_series(w, r, tmp, base);
         }
+        /* order 0 in the node's own form a^c, so that it is the node of
+         * the same power written elsewhere (Gonzalez's remainder cancels
+         * its term of order 0 exactly) */
+        r[0] = hl_fold_pow(pool, a[0], c);
         free(base), free(tmp);
         return;
     }

@@ -1214,7 +1214,7 @@ static void build_newton(nj *N, const hl_newton *nw)
                 c, NULL, GCC_JIT_BINARY_OP_LOGICAL_AND,
                 gcc_jit_context_get_type(c, GCC_JIT_TYPE_BOOL),
                 CMP(N, GCC_JIT_COMPARISON_LT, RVL(N->prev), ND(N, INFINITY)),
-                CMP(N, GCC_JIT_COMPARISON_GT, RVL(N->ratio), ND(N, 0.25)))));
+                CMP(N, GCC_JIT_COMPARISON_GT, RVL(N->ratio), ND(N, HL_NEWTON_REFRESH)))));
     gcc_jit_block *jac = BLK(N), *plain = BLK(N), *after = BLK(N);
     gcc_jit_block_end_with_conditional(blk, NULL, refresh, jac, plain);
 

@@ -154,7 +154,7 @@ hl_newton_status hl_newton_solve(double *U, int *iters, double *last_dn, const d
     for (int it = 1; it <= nw->max_iter; it++) {
         *iters = it;
         memcpy(in + nx, U, (size_t)m * sizeof *U);
-        if (it == 1 || (!fresh && last < INFINITY && ratio > 0.25)) {
+        if (it == 1 || (!fresh && last < INFINITY && ratio > HL_NEWTON_REFRESH)) {
             hl_tape_eval_d(out, in, nw->FJ); /* F, then the Jacobian */
             memcpy(A, out + m, (size_t)(m * m) * sizeof *A);
             if (!all_finite(A, m * m))

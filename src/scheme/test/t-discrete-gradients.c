@@ -1,5 +1,5 @@
-/* The integrals of the discrete gradients (step.c: Gauss-Legendre or the
- * Taylor series at s = 1/2, whichever is cheaper) against closed forms.
+/* The discrete gradients' integrals (step.c: Gauss-Legendre or the Taylor
+ * series at s = 1/2, whichever is cheaper) against closed forms.
  *
  * Average vector field for a separable H = p^2/2 + V(q):
  *   Q = q + D (p + P)/2,  P = p - D (V(Q) - V(q)) / (Q - q),
@@ -13,7 +13,17 @@
  * stepper's next point must equal the closed form's to 2e-15 relative.
  * Kepler (where the Gauss rule is the cheaper) is checked by energy: the
  * average vector field conserves H exactly, so |H(Z) - H(z)| is the rule's
- * error, at most 1e-14. */
+ * error, at most 1e-14.
+ *
+ * Gonzalez on the pendulum against its closed form: with h = Q - q,
+ * v = P - p, m = (q + Q)/2, the remainder is R = sin(m) (2 sin(h/2) - h)
+ * and, r = R / sin(m) / (h^2 + v^2),
+ *   h = D ((p + P)/2 + sin(m) r v),  v = -D sin(m) (1 + r h),
+ * solved by Newton in long double: equal to 2e-15 for D = 0.01, 0.1, 0.3,
+ * in at most 3.5, 4.5, 6 Newton iterations a step on average (the
+ * remainder as an integral whose Taylor term of order 0 is exactly 0, the
+ * rates started at Euler's half step, the Jacobian refreshed when an
+ * iteration gains fewer than 3 digits: 5.3, 6.4, 11 before). */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -119,11 +129,84 @@ static void kepler_energy(void)
     hl_system_free(sys);
 }
 
+/* The Gonzalez step of the pendulum from its closed form (Newton with a
+ * finite-difference Jacobian in long double). */
+static void gonzalez_closed(double *z, double D)
+{
+    ld q = z[0], p = z[1], Q = q + D * p, P = p - D * sinl(q);
+    for (int it = 0; it < 60; it++) {
+        ld F[2], J[2][2], U[2] = {Q, P};
+        for (int c = -1; c < 2; c++) {
+            ld u[2] = {U[0], U[1]}, e = 1e-9L, f[2];
+            if (c >= 0)
+                u[c] += e;
+            ld h = u[0] - q, v = u[1] - p, m = (q + u[0]) / 2, n2 = h * h + v * v;
+            ld r = n2 > 0 ? (2 * sinl(h / 2) - h) / n2 : 0;
+            f[0] = h - D * ((p + u[1]) / 2 + sinl(m) * r * v);
+            f[1] = v + D * sinl(m) * (1 + r * h);
+            for (int i = 0; i < 2; i++) {
+                if (c < 0)
+                    F[i] = f[i];
+                else
+                    J[i][c] = (f[i] - F[i]) / e;
+            }
+        }
+        ld det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+        ld dQ = -(J[1][1] * F[0] - J[0][1] * F[1]) / det;
+        ld dP = -(-J[1][0] * F[0] + J[0][0] * F[1]) / det;
+        Q += dQ, P += dP;
+        if (fabsl(dQ) + fabsl(dP) < 1e-19L)
+            break;
+    }
+    z[0] = (double)Q, z[1] = (double)P;
+}
+
+static void gonzalez_against_closed_form(void)
+{
+    hl_error err;
+    hl_system_spec spec = {"p^2/2 - cos(q)", NULL, NULL, NULL};
+    hl_system *sys = NULL;
+    hl_scheme *s = NULL;
+    hl_scheme_stepper *st = NULL;
+    if (hl_system_new(&sys, &spec, &err) != HL_OK ||
+        hl_scheme_new(&s, "gonzalez", 0, sys, &err) != HL_OK ||
+        hl_scheme_stepper_new(&st, s, &err) != HL_OK) {
+        CHECK_MSG(0, "gonzalez: %s", err.msg);
+        return;
+    }
+    static const double steps[] = {0.01, 0.1, 0.3}, max_its[] = {3.5, 4.5, 6};
+    double worst = 0;
+    for (int i = 0; i < 3; i++) {
+        double a[2] = {1.3, 0}, b[2];
+        long its = 0;
+        for (int k = 0; k < 300; k++) {
+            memcpy(b, a, sizeof b);
+            CHECK_MSG(hl_scheme_step(st, a, steps[i], 0, &err) == HL_OK, "gonzalez: %s", err.msg);
+            its += hl_scheme_stepper_iterations(st);
+            gonzalez_closed(b, steps[i]);
+            for (int j = 0; j < 2; j++) {
+                double d = fabs(a[j] - b[j]) / fmax(1, fabs(b[j]));
+                worst = fmax(worst, d);
+                CHECK_MSG(d <= 2e-15, "gonzalez, D = %g, step %d: %.17g vs %.17g", steps[i], k,
+                          a[j], b[j]);
+            }
+        }
+        CHECK_MSG(its <= max_its[i] * 300, "gonzalez, D = %g: %.2f Newton iterations a step", steps[i],
+                  its / 300.0);
+        printf("%-28s gonzalez, D = %g: closed form to %.1e, %.2f Newton iterations a step\n",
+               "p^2/2 - cos(q)", steps[i], worst, its / 300.0);
+    }
+    hl_scheme_stepper_free(st);
+    hl_scheme_free(s);
+    hl_system_free(sys);
+}
+
 int main(void)
 {
     against_closed_form("p^2/2 - cos(q)", quot_pendulum);
     against_closed_form("p^2/2 + (1 - exp(-q))^2", quot_morse);
     against_closed_form("p^2/2 + q^4/4", quot_quartic);
     kepler_energy();
+    gonzalez_against_closed_form();
     return HL_TEST_END();
 }
