@@ -256,6 +256,96 @@ static void build_eval(jit *J)
     gcc_jit_block_end_with_void_return(J->blk, NULL);
 }
 
+/* Loop-carried calls.  An instruction on an input register that is fed
+ * back (sin q) may have a twin, the same op on the register fed back to
+ * that input (sin Q): from the second step on, its values are the twin's of
+ * the step before, the same bits, and the call is not made again
+ * (Stormer-Verlet's two kicks a step, Yoshida's shared forces). */
+typedef struct carry {
+    int i, twin;              /* instruction indices in t->code */
+    gcc_jit_lvalue *d, *x;    /* the carried values (x: the aux, e.g. cos) */
+} carry;
+
+static int carried_op(int op)
+{
+    return op == HL_OP_POWK || (op >= HL_OP_SQRT && op <= HL_OP_ACOS);
+}
+
+/* The instructions whose values a loop can carry; nmap inputs fed back.
+ * Marks the twins' registers read where the carried ones are. */
+static carry *find_carries(jit *J, int nmap, int *n)
+{
+    const hl_tape *t = J->t;
+    carry *cv = hl_xmalloc((size_t)(t->ncode + 1) * sizeof *cv);
+    *n = 0;
+    for (int k = 0; k < t->ncode; k++) {
+        const hl_instr *i = &t->code[k];
+        if (!carried_op(i->op) || i->a < 0 || i->a >= nmap || t->outreg[i->a] == i->a)
+            continue;
+        for (int k2 = 0; k2 < t->ncode; k2++) {
+            const hl_instr *w = &t->code[k2];
+            if (k2 == k || w->op != i->op || w->b != i->b || w->a != t->outreg[i->a])
+                continue;
+            J->read[w->d] |= J->read[i->d];
+            if (w->x >= 0)
+                J->read[w->x] |= J->read[i->x];
+            cv[(*n)++] = (carry){k, k2, NULL, NULL};
+            break;
+        }
+    }
+    return cv;
+}
+
+static int carried(const carry *cv, int n, int k)
+{
+    for (int j = 0; j < n; j++)
+        if (cv[j].i == k)
+            return j;
+    return -1;
+}
+
+/* The carried values from the step's start (entry), and into the body. */
+static void carry_start(jit *J, carry *cv, int n)
+{
+    for (int j = 0; j < n; j++) {
+        const hl_instr *i = &J->t->code[cv[j].i];
+        emit(J, i);
+        char name[32];
+        snprintf(name, sizeof name, "cd%d", j);
+        cv[j].d = gcc_jit_function_new_local(J->fun, NULL, J->dbl, name);
+        gcc_jit_block_add_assignment(J->blk, NULL, cv[j].d, J->read[i->d] ? val(J, i->d)
+                                                            : gcc_jit_context_zero(J->c, J->dbl));
+        if (i->x >= 0) {
+            snprintf(name, sizeof name, "cx%d", j);
+            cv[j].x = gcc_jit_function_new_local(J->fun, NULL, J->dbl, name);
+            gcc_jit_block_add_assignment(J->blk, NULL, cv[j].x,
+                                         J->read[i->x] ? val(J, i->x)
+                                                       : gcc_jit_context_zero(J->c, J->dbl));
+        }
+    }
+}
+
+static void carry_use(jit *J, const carry *c)
+{
+    const hl_instr *i = &J->t->code[c->i];
+    if (J->read[i->d])
+        assign(J, i->d, gcc_jit_lvalue_as_rvalue(c->d));
+    if (i->x >= 0 && J->read[i->x])
+        assign(J, i->x, gcc_jit_lvalue_as_rvalue(c->x));
+}
+
+/* At the end of a step kept: the twins' values for the next. */
+static void carry_next(jit *J, gcc_jit_block *blk, const carry *cv, int n)
+{
+    for (int j = 0; j < n; j++) {
+        const hl_instr *i = &J->t->code[cv[j].i], *w = &J->t->code[cv[j].twin];
+        if (J->read[i->d])
+            gcc_jit_block_add_assignment(blk, NULL, cv[j].d, val(J, w->d));
+        if (i->x >= 0 && J->read[i->x])
+            gcc_jit_block_add_assignment(blk, NULL, cv[j].x, val(J, w->x));
+    }
+}
+
 /* long hl_jit_iter(double *z, long n): hl_tape_iterate as one loop, the
  * state in machine registers between steps.  A step is kept only if its
  * outputs are all finite: sum (y - y) is 0 exactly then, NaN otherwise.
@@ -294,6 +384,9 @@ static void build_loop(jit *J, int watch)
     J->blk = entry;
     for (int r = 0; r < t->nin; r++)
         assign(J, r, gcc_jit_lvalue_as_rvalue(elem(J, z, r)));
+    int ncarry;
+    carry *cv = find_carries(J, nmap, &ncarry);
+    carry_start(J, cv, ncarry);
     gcc_jit_block_add_assignment(entry, NULL, k, gcc_jit_context_zero(c, lng));
     if (watch)
         gcc_jit_block_add_assignment(entry, NULL, m,
@@ -306,8 +399,13 @@ static void build_loop(jit *J, int watch)
                                        n),
         body, done);
     J->blk = body;
-    for (int i = 0; i < t->ncode; i++)
-        emit(J, &t->code[i]);
+    for (int i = 0; i < t->ncode; i++) {
+        int cj = carried(cv, ncarry, i);
+        if (cj >= 0)
+            carry_use(J, &cv[cj]);
+        else
+            emit(J, &t->code[i]);
+    }
     gcc_jit_rvalue *acc = gcc_jit_context_zero(c, J->dbl);
     for (int j = 0; j < t->nout; j++) {
         gcc_jit_block_add_assignment(body, NULL, y[j], val(J, t->outreg[j]));
@@ -340,6 +438,8 @@ static void build_loop(jit *J, int watch)
         gcc_jit_block_add_assignment(raise, NULL, m, gcc_jit_lvalue_as_rvalue(e));
         gcc_jit_block_end_with_jump(raise, NULL, next);
     }
+    carry_next(J, next, cv, ncarry);
+    free(cv);
     for (int j = 0; j < nmap; j++)
         gcc_jit_block_add_assignment(next, NULL, J->loc[j], gcc_jit_lvalue_as_rvalue(y[j]));
     gcc_jit_block_add_assignment_op(next, NULL, k, GCC_JIT_BINARY_OP_PLUS,
