@@ -20,8 +20,10 @@
  * iterations, not 3).  AVF and Itoh-Abe (the same scheme for a separable H,
  * coordinates q then p) use the pendulum's closed-form average
  * (cos q - cos Q)/(Q - q) = sin(m) sin(h/2)/(h/2), Gonzalez its remainder
- * in closed form; hamlie integrates by Gauss-Legendre quadrature (8 nodes)
- * and forms the Gonzalez remainder as H(Z) - H(z) - grad H(m).dz for any H.
+ * in closed form; hamlie, for any H, integrates by the Taylor series at
+ * s = 1/2 to degree 14 (or Gauss-Legendre, 8 nodes, where that is cheaper:
+ * step.c) and forms the Gonzalez remainder as the integral of
+ * (grad H(z + s dz) - grad H(m)).dz.
  * The final states must agree with hamlie's (|difference| < 1e-9; else
  * exit 1), which shows that each loop is the same scheme.
  *
