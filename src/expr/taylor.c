@@ -3,9 +3,11 @@
  * The recurrences are those of the tape's Taylor mode (tape.h), applied to
  * expressions instead of numbers: each node gets its K + 1 coefficients,
  * built from its operands' through the folding constructors (fold.h), so a
- * coefficient that vanishes is the number 0 and costs nothing further (the
- * series of sin(q + s h) in s is a chain of products, not K^2 sums).  A node
- * whose operands' series are constant keeps its own expression. */
+ * coefficient that vanishes is the number 0 and costs nothing further.  A
+ * function of an argument linear in the symbol (sin(q + s h)) takes its
+ * closed-form coefficients, +-f^(k) h^k/k!, with the powers built in a tree
+ * so the compiled code waits on few products.  A node whose operands'
+ * series are constant keeps its own expression. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -103,42 +105,57 @@ static void div_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *
     }
 }
 
-/* r = a^c, c free of the variable: c an integer, |c| <= 64, by binary
- * powering (exact where a[0] = 0; a negative c then divides), else
- * (sum_{j<k} (c(k-j) - j) a[k-j] r[j]) / (k a[0]) */
+/* r = a^n, n >= 0, by binary powering: exact where a[0] = 0. */
+static void int_pow_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *a, long n)
+{
+    int K = w->K;
+    const hl_expr **base = hl_xmalloc((size_t)(K + 1) * sizeof *base);
+    const hl_expr **tmp = hl_xmalloc((size_t)(K + 1) * sizeof *tmp);
+    for (int k = 0; k <= K; k++)
+        base[k] = a[k], r[k] = k == 0 ? hl_num_si(w->pool, 1) : w->zero;
+    for (; n > 0; n >>= 1) {
+        if (n & 1) {
+            mul_series(w, tmp, r, base);
+            memcpy(r, tmp, (size_t)(K + 1) * sizeof *r);
+        }
+        if (n > 1) {
+            mul_series(w, tmp, base, base);
+            memcpy(base, tmp, (size_t)(K + 1) * sizeof *base);
+        }
+    }
+    free(base), free(tmp);
+}
+
+/* r = 1/a, by the division recurrence */
+static void inverse_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *a)
+{
+    const hl_expr **one = hl_xmalloc((size_t)(w->K + 1) * sizeof *one);
+    for (int k = 0; k <= w->K; k++)
+        one[k] = k == 0 ? hl_num_si(w->pool, 1) : w->zero;
+    div_series(w, r, one, a);
+    free(one);
+}
+
+/* r = a^c, c free of the variable: an integer |c| <= 64 by binary powering
+ * (then 1/a^|c| for c < 0), else (sum_{j<k} (c(k-j) - j) a[k-j] r[j]) /
+ * (k a[0]).  Order 0 is a[0]^c in the node's own form, so that it is the
+ * node of the same power written elsewhere (Gonzalez's remainder cancels
+ * its term of order 0 exactly). */
 static void pow_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *a, const hl_expr *c)
 {
     hl_pool *pool = w->pool;
     int K = w->K;
     if (c->kind == HL_NUM && fmpz_is_one(fmpq_denref(c->num)) &&
         fmpz_fits_si(fmpq_numref(c->num)) && labs(fmpz_get_si(fmpq_numref(c->num))) <= 64) {
-        long n = fmpz_get_si(fmpq_numref(c->num)), neg = n < 0;
-        n = neg ? -n : n;
-        const hl_expr **base = hl_xmalloc((size_t)(K + 1) * sizeof *base);
-        const hl_expr **tmp = hl_xmalloc((size_t)(K + 1) * sizeof *tmp);
-        for (int k = 0; k <= K; k++)
-            base[k] = a[k], r[k] = k == 0 ? hl_num_si(pool, 1) : w->zero;
-        for (; n > 0; n >>= 1) {
-            if (n & 1) {
-                mul_series(w, tmp, r, base);
-                memcpy(r, tmp, (size_t)(K + 1) * sizeof *r);
-            }
-            if (n > 1) {
-                mul_series(w, tmp, base, base);
-                memcpy(base, tmp, (size_t)(K + 1) * sizeof *base);
-            }
+        long n = fmpz_get_si(fmpq_numref(c->num));
+        int_pow_series(w, r, a, labs(n));
+        if (n < 0) {
+            const hl_expr **pos = hl_xmalloc((size_t)(K + 1) * sizeof *pos);
+            memcpy(pos, r, (size_t)(K + 1) * sizeof *r);
+            inverse_series(w, r, pos);
+            free(pos);
         }
-        if (neg) { /* 1 / a^|c| */
-            memcpy(base, r, (size_t)(K + 1) * sizeof *r);
-            for (int k = 0; k <= K; k++)
-                tmp[k] = k == 0 ? hl_num_si(pool, 1) : w->zero;
-            div_series(w, r, tmp, base);
-        }
-        /* order 0 in the node's own form a^c, so that it is the node of
-         * the same power written elsewhere (Gonzalez's remainder cancels
-         * its term of order 0 exactly) */
         r[0] = hl_fold_pow(pool, a[0], c);
-        free(base), free(tmp);
         return;
     }
     r[0] = hl_fold_pow(pool, a[0], c);

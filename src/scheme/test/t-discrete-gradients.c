@@ -201,6 +201,35 @@ static void gonzalez_against_closed_form(void)
     hl_system_free(sys);
 }
 
+/* Gonzalez's remainder int_0^1 (grad H(z + s d) - grad H(m)).d ds: its
+ * Taylor term of order 0 at s = 1/2 is the node 0 (no rounding of O(1)
+ * values in R), for H with sin, with powers, with 1/sqrt. */
+static void gonzalez_order0(void)
+{
+    static const char *const Hs[] = {"p^2/2 - cos(q)",
+                                      "(px^2+py^2)/2 + (x^2+y^2)/2 + x^2*y - y^3/3",
+                                      "(px^2+py^2)/2 - 1/sqrt(x^2+y^2)", "p^4/4 + q^6 + q*p"};
+    for (int i = 0; i < 4; i++) {
+        hl_error err;
+        hl_system_spec spec = {Hs[i], NULL, NULL, NULL};
+        hl_system *sys = NULL;
+        hl_scheme *s = NULL;
+        if (hl_system_new(&sys, &spec, &err) != HL_OK ||
+            hl_scheme_new(&s, "gonzalez", 0, sys, &err) != HL_OK) {
+            CHECK_MSG(0, "%s: %s", Hs[i], err.msg);
+            continue;
+        }
+        hl_pool *pool = hl_system_pool(sys);
+        const hl_expr *c[2];
+        CHECK(s->nint == 1);
+        hl_expr_taylor(c, pool, s->int_body[0], HL_SCHEME_S, hl_num_frac(pool, 1, 2), 1);
+        CHECK_MSG(c[0] == hl_num_si(pool, 0), "%s: the remainder's term of order 0 is not 0",
+                  Hs[i]);
+        hl_scheme_free(s);
+        hl_system_free(sys);
+    }
+}
+
 int main(void)
 {
     against_closed_form("p^2/2 - cos(q)", quot_pendulum);
@@ -208,5 +237,6 @@ int main(void)
     against_closed_form("p^2/2 + q^4/4", quot_quartic);
     kepler_energy();
     gonzalez_against_closed_form();
+    gonzalez_order0();
     return HL_TEST_END();
 }
