@@ -43,7 +43,11 @@
  *   numeric: a rule exact for polynomials of degree 2 HL_SCHEME_GAUSS_NODES
  *            - 1 in s: Gauss-Legendre, or the integrand's Taylor series at
  *            s = 1/2 (even terms) where that costs at most half (one sin a
- *            residual for the pendulum's average vector field, not eight).
+ *            residual for the pendulum's average vector field, not eight)
+ *            and the integrand is entire (polynomials, sin, cos, exp, sinh,
+ *            cosh of arguments linear in s); each step checks that the
+ *            series' truncation is below rounding there and is otherwise
+ *            taken again with Gauss-Legendre (hl_scheme_stepper_fallbacks).
  * Both readings consume only this structure; a reading never re-parses.
  *
  * Lifetime: an hl_scheme borrows its system (expressions live in the
@@ -231,6 +235,11 @@ int hl_scheme_stepper_jit(hl_scheme_stepper *st, long nsteps);
 
 /* Newton iterations taken by the last step (0 for an explicit scheme). */
 int hl_scheme_stepper_iterations(const hl_scheme_stepper *st);
+
+/* Steps taken again with Gauss-Legendre rules because a Taylor rule's
+ * truncation was above rounding there (a long step: |Q - q| > 1.16 for the
+ * pendulum's average vector field). */
+long hl_scheme_stepper_fallbacks(const hl_scheme_stepper *st);
 
 /* Set the count of steps taken (the step number in messages), e.g. to 0
  * for a new run with the same stepper (its compiled tapes are kept), or to

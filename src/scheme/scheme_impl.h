@@ -42,6 +42,16 @@ typedef struct scheme_frame {
 int scheme_read(sb *b, const char *text, const scheme_frame *f, hl_error *err);
 
 /* dH/dq_j, dH/dp_j of the system as expressions (NULL without H). */
+/* The numeric value of the integral int_0^1 f ds (f in HL_SCHEME_S), by a
+ * rule exact for polynomials of degree 2 HL_SCHEME_GAUSS_NODES - 1 in s
+ * (integral.c): Gauss-Legendre; or, if taylor_ok and f is built from
+ * polynomials and sin, cos, exp, sinh, cosh of arguments linear in s, and
+ * that costs at most half, f's Taylor series at s = 1/2, which computes
+ * each function once.  Then *check is an expression free of s whose value,
+ * at the step's values, must be at most *bound for the series to be exact
+ * to rounding (else NULL, bound infinite). */
+const hl_expr *scheme_integral(const hl_expr *f, int taylor_ok, hl_pool *pool,
+                               const hl_expr **check, double *bound);
 const hl_expr *scheme_dH(hl_system *sys, int j, int wrt_p);
 /* The system's point as symbols: v[j] = q_j, v[N + j] = p_j. */
 void scheme_point(const hl_expr **v, hl_system *sys);

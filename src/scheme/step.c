@@ -17,9 +17,14 @@ struct hl_scheme_stepper {
     hl_tape *jac;   /* z, D, U -> F and dF/dU (row-major): the two share
                      * their subexpressions (sin and cos of a midpoint) */
     hl_tape *start; /* z, D -> the Newton starting point U0 */
-    hl_tape *after; /* z, D, U -> the next point (eliminated unknowns too) */
+    hl_tape *after; /* z, D, U -> the next point (eliminated unknowns too),
+                     * then the Taylor rules' checks (integral.c) */
     double *in, *out, *U;
     hl_newton *nw;  /* the solve of the implicit equations (tape.h) */
+    int ncheck;     /* the checks, each to be at most its bound, */
+    double *bound;
+    hl_scheme_stepper *fallback; /* else the step by this one: Gauss rules */
+    long fallbacks;
 };
 
 void hl_scheme_stepper_free(hl_scheme_stepper *st)
@@ -31,11 +36,14 @@ void hl_scheme_stepper_free(hl_scheme_stepper *st)
     hl_tape_free(st->start);
     hl_tape_free(st->after);
     hl_newton_free(st->nw);
-    free(st->in), free(st->out), free(st->U);
+    hl_scheme_stepper_free(st->fallback);
+    free(st->in), free(st->out), free(st->U), free(st->bound);
     free(st);
 }
 
 int hl_scheme_stepper_iterations(const hl_scheme_stepper *st) { return st->iters; }
+
+long hl_scheme_stepper_fallbacks(const hl_scheme_stepper *st) { return st->fallbacks; }
 
 void hl_scheme_stepper_restart(hl_scheme_stepper *st, long steps)
 {
@@ -79,114 +87,27 @@ int hl_scheme_stepper_jit(hl_scheme_stepper *st, long nsteps)
            jit_if_it_pays(st->start, nsteps);
 }
 
-/* x exactly, as a rational (a double is a dyadic rational). */
-static const hl_expr *num_d(hl_pool *pool, double x)
-{
-    int e;
-    double f = frexp(x, &e);
-    fmpq_t r;
-    fmpq_init(r);
-    fmpz_set_d(fmpq_numref(r), ldexp(f, 53));
-    e -= 53;
-    if (e >= 0)
-        fmpz_mul_2exp(fmpq_numref(r), fmpq_numref(r), (ulong)e);
-    else
-        fmpz_mul_2exp(fmpq_denref(r), fmpq_denref(r), (ulong)(-e));
-    fmpq_canonicalise(r);
-    const hl_expr *v = hl_num_fmpq(pool, r);
-    fmpq_clear(r);
-    return v;
-}
-
-/* Gauss-Legendre nodes and weights on [0, 1] (Newton on P_n, the usual
- * recurrence). */
-static void gauss_legendre(double *s, double *w, int n)
-{
-    for (int i = 0; i < (n + 1) / 2; i++) {
-        double x = cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 1;
-        for (int it = 0; it < 100; it++) {
-            double p0 = 1, p1 = x;
-            for (int k = 2; k <= n; k++) {
-                double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
-                p0 = p1, p1 = p2;
-            }
-            double pn = n == 1 ? x : p1, pm = n == 1 ? 1 : p0;
-            dp = n * (x * pn - pm) / (x * x - 1);
-            double dx = pn / dp;
-            x -= dx;
-            if (fabs(dx) < 1e-17)
-                break;
-        }
-        s[i] = (1 - x) / 2;
-        s[n - 1 - i] = (1 + x) / 2;
-        w[i] = w[n - 1 - i] = 1 / ((1 - x * x) * dp * dp);
-    }
-}
-
-/* int_0^1 f(s) ds by Gauss-Legendre with n nodes. */
-static const hl_expr *gauss_rule(const hl_expr *f, int n, hl_pool *pool)
-{
-    double sn[HL_SCHEME_GAUSS_NODES], wn[HL_SCHEME_GAUSS_NODES];
-    gauss_legendre(sn, wn, n);
-    const char *sv = HL_SCHEME_S;
-    const hl_expr *sum = NULL;
-    for (int i = 0; i < n; i++) {
-        const hl_expr *node = num_d(pool, sn[i]);
-        const hl_expr *t = hl_mul(pool, num_d(pool, wn[i]), hl_expr_subst(pool, f, 1, &sv, &node));
-        sum = sum ? hl_add(pool, sum, t) : t;
-    }
-    return sum;
-}
-
-/* int_0^1 f(s) ds from f's Taylor series at s = 1/2 to degree K:
- * sum over even k of c_k / (2^k (k + 1)); the odd terms integrate to 0, so
- * an even K is exact for polynomials of degree K + 1. */
-static const hl_expr *midpoint_taylor_rule(const hl_expr *f, int K, hl_pool *pool)
-{
-    const hl_expr **c = hl_xmalloc((size_t)(K + 1) * sizeof *c);
-    hl_expr_taylor(c, pool, f, HL_SCHEME_S, hl_num_frac(pool, 1, 2), K);
-    int n = 0;
-    for (int k = 0; k <= K; k += 2)
-        if (!(c[k]->kind == HL_NUM && fmpq_is_zero(c[k]->num)))
-            c[n++] = hl_mul(pool, hl_num_frac(pool, 1, (1UL << k) * (unsigned long)(k + 1)), c[k]);
-    /* summed pairwise: the terms are independent, and a tree of sums waits
-     * for log2 n additions where a chain waits for n */
-    while (n > 1) {
-        int m = 0;
-        for (int i = 0; i + 1 < n; i += 2)
-            c[m++] = hl_add(pool, c[i], c[i + 1]);
-        if (n % 2)
-            c[m++] = c[n - 1];
-        n = m;
-    }
-    const hl_expr *sum = n ? c[0] : hl_num_si(pool, 0);
-    free(c);
-    return sum;
-}
-
-/* The equations with each integral replaced by a rule exact for
- * polynomials of degree 2 HL_SCHEME_GAUSS_NODES - 1 in s (scheme.h):
- * Gauss-Legendre, or the Taylor series at s = 1/2, which computes each
- * function of the integrand once (the pendulum's average vector field: one
- * sin and cos a residual instead of eight) and is exact for a polynomial
- * integrand of any degree it reaches.  The series only where it costs at
- * most half of the Gauss rule (hl_expr_cost): where the two are close
- * (Morse's product of exponentials, Kepler's powers) the Gauss rule rounds
- * better (Morse, D = 1: 1.5e-16 against 1.1e-15 relative) and converges
- * whatever the nearest singularity of the integrand (t-avf-rule). */
+/* The equations with each integral replaced by its numeric rule
+ * (scheme_integral).  With taylor_ok (an implicit scheme, whose step can be
+ * checked and taken again), the Taylor rules' checks and bounds go to
+ * chk[0..*nchk-1], bound[]. */
 static void quadrature(const hl_expr **lhs, const hl_expr **rhs, const hl_scheme *s,
-                       hl_pool *pool)
+                       hl_pool *pool, int taylor_ok, const hl_expr **chk, double *bound,
+                       int *nchk)
 {
     for (int i = 0; i < s->m; i++)
         lhs[i] = s->lhs[i], rhs[i] = s->rhs[i];
+    if (nchk != NULL)
+        *nchk = 0;
     if (s->nint == 0)
         return;
     const hl_expr **val = hl_xmalloc((size_t)s->nint * sizeof *val);
     for (int t = 0; t < s->nint; t++) {
-        const hl_expr *gl = gauss_rule(s->int_body[t], HL_SCHEME_GAUSS_NODES, pool);
-        const hl_expr *ty =
-            midpoint_taylor_rule(s->int_body[t], 2 * HL_SCHEME_GAUSS_NODES - 2, pool);
-        val[t] = 2 * hl_expr_cost(&ty, 1) <= hl_expr_cost(&gl, 1) ? ty : gl;
+        const hl_expr *c;
+        double b;
+        val[t] = scheme_integral(s->int_body[t], taylor_ok, pool, &c, &b);
+        if (c != NULL)
+            chk[*nchk] = c, bound[(*nchk)++] = b;
     }
     for (int i = 0; i < s->m; i++) {
         lhs[i] = hl_expr_subst(pool, lhs[i], s->nint, (const char *const *)s->int_name, val);
@@ -397,8 +318,8 @@ static void simplify_values(const hl_expr **val, const hl_scheme *s, hl_pool *po
  * Jacobian, the start, and the tape that gives the next point from the
  * solution.  inputs: z, D, then room for the kept unknowns' names. */
 static int compile_newton(hl_scheme_stepper *st, const hl_scheme *s, const hl_expr **lhs,
-                          const hl_expr **rhs, const char **inputs, hl_pool *pool,
-                          hl_error *err)
+                          const hl_expr **rhs, const hl_expr *const *chk, const char **inputs,
+                          hl_pool *pool, hl_error *err)
 {
     int m = s->m, N = s->N, nz = 2 * N + 1;
     const hl_expr **val = hl_xcalloc((size_t)m, sizeof *val);
@@ -424,7 +345,8 @@ static int compile_newton(hl_scheme_stepper *st, const hl_scheme *s, const hl_ex
     for (int u = 0; u < m; u++)
         if (val[u] != NULL)
             names[ne] = s->unknown[u], vals[ne++] = val[u];
-    const hl_expr **outs = hl_xmalloc((size_t)(mk + mk * mk + 2 * N) * sizeof *outs);
+    const hl_expr **outs =
+        hl_xmalloc((size_t)(mk + mk * mk + 2 * N + st->ncheck) * sizeof *outs);
     k = 0;
     for (int i = 0; i < m; i++)
         if (!gone[i])
@@ -445,8 +367,10 @@ static int compile_newton(hl_scheme_stepper *st, const hl_scheme *s, const hl_ex
         int u = j < N ? s->iQ[j] : s->iP[j - N];
         outs[j] = val[u] != NULL ? val[u] : hl_sym(pool, s->unknown[u]);
     }
+    for (int i = 0; i < st->ncheck; i++)
+        outs[2 * N + i] = hl_expr_subst(pool, chk[i], ne, names, vals);
     if (rc == HL_OK)
-        rc = hl_tape_new(&st->after, outs, 2 * N, inputs, nz + mk, err);
+        rc = hl_tape_new(&st->after, outs, 2 * N + st->ncheck, inputs, nz + mk, err);
     /* the start: the next point by explicit Euler; any other unknown (a
      * stage, a rate (Q - q)/D) its value at D = 0 taken at Euler's
      * half step, where a rate is to O(D^2) (Gonzalez: 6 Newton iterations
@@ -493,7 +417,7 @@ int hl_scheme_step_exprs(const hl_expr **Z, const hl_scheme *s, hl_error *err)
     int m = s->m, N = s->N, st = HL_OK;
     const hl_expr **lhs = hl_xmalloc((size_t)m * sizeof *lhs);
     const hl_expr **rhs = hl_xmalloc((size_t)m * sizeof *rhs);
-    quadrature(lhs, rhs, s, pool);
+    quadrature(lhs, rhs, s, pool, 0, NULL, NULL, NULL);
     if (s->all_explicit)
         explicit_map(Z, s, rhs, pool);
     else { /* explicit if every unknown can be eliminated (the paper's Euler) */
@@ -512,7 +436,10 @@ int hl_scheme_step_exprs(const hl_expr **Z, const hl_scheme *s, hl_error *err)
     return st;
 }
 
-int hl_scheme_stepper_new(hl_scheme_stepper **out, const hl_scheme *s, hl_error *err)
+/* The stepper with Taylor rules for the integrals where taylor_ok and they
+ * are cheaper (their checks in st->after), else Gauss rules. */
+static int stepper_build(hl_scheme_stepper **out, const hl_scheme *s, int taylor_ok,
+                         hl_error *err)
 {
     *out = NULL;
     hl_pool *pool = hl_system_pool(s->sys);
@@ -530,10 +457,12 @@ int hl_scheme_stepper_new(hl_scheme_stepper **out, const hl_scheme *s, hl_error 
         inputs[2 * N + 1 + u] = s->unknown[u];
     const hl_expr **lhs = hl_xmalloc((size_t)m * sizeof *lhs);
     const hl_expr **rhs = hl_xmalloc((size_t)m * sizeof *rhs);
-    quadrature(lhs, rhs, s, pool);
+    const hl_expr **chk = hl_xmalloc(((size_t)s->nint + 1) * sizeof *chk);
+    st->bound = hl_xmalloc(((size_t)s->nint + 1) * sizeof *st->bound);
+    quadrature(lhs, rhs, s, pool, taylor_ok && !s->all_explicit, chk, st->bound, &st->ncheck);
     int rc = s->all_explicit ? compile_explicit(st, s, rhs, inputs, pool, err)
-                             : compile_newton(st, s, lhs, rhs, inputs, pool, err);
-    free(inputs), free(lhs), free(rhs);
+                             : compile_newton(st, s, lhs, rhs, chk, inputs, pool, err);
+    free(inputs), free(lhs), free(rhs), free(chk);
     if (rc != HL_OK) {
         hl_error_prefix(err, "compiling the scheme '%s'", s->name);
         hl_scheme_stepper_free(st);
@@ -546,6 +475,24 @@ int hl_scheme_stepper_new(hl_scheme_stepper **out, const hl_scheme *s, hl_error 
     st->U = hl_xmalloc((size_t)m * sizeof *st->U);
     *out = st;
     return HL_OK;
+}
+
+int hl_scheme_stepper_new(hl_scheme_stepper **out, const hl_scheme *s, hl_error *err)
+{
+    int rc = stepper_build(out, s, 1, err);
+    hl_scheme_stepper *st = *out;
+    if (rc != HL_OK || st->ncheck == 0)
+        return rc;
+    if (st->all_explicit) { /* a map after elimination: nothing to check it */
+        hl_scheme_stepper_free(st);
+        return stepper_build(out, s, 0, err);
+    }
+    rc = stepper_build(&st->fallback, s, 0, err);
+    if (rc != HL_OK) {
+        hl_scheme_stepper_free(st);
+        *out = NULL;
+    }
+    return rc;
 }
 
 static int all_finite(const double *x, int n)
@@ -588,6 +535,26 @@ static int newton(hl_scheme_stepper *st, double D, double t, hl_error *err)
     }
 }
 
+/* The Taylor rules' checks at the step's values (NaN fails them). */
+static int within_bounds(const double *c, const hl_scheme_stepper *st)
+{
+    for (int i = 0; i < st->ncheck; i++)
+        if (!(c[i] <= st->bound[i]))
+            return 0;
+    return 1;
+}
+
+/* The step again with the Gauss rules, counted as this stepper's. */
+static int fallback_step(hl_scheme_stepper *st, double *z, double D, double t, hl_error *err)
+{
+    st->fallback->steps = st->steps;
+    int rc = hl_scheme_step(st->fallback, z, D, t, err);
+    st->iters = st->fallback->iters;
+    if (rc == HL_OK)
+        st->steps++, st->fallbacks++;
+    return rc;
+}
+
 int hl_scheme_step(hl_scheme_stepper *st, double *z, double D, double t, hl_error *err)
 {
     int N = st->N;
@@ -607,6 +574,8 @@ int hl_scheme_step(hl_scheme_stepper *st, double *z, double D, double t, hl_erro
             return rc;
         /* the next point: Newton's convergence test has just computed it */
         const double *Z = hl_newton_output(st->nw);
+        if (Z != NULL && !within_bounds(Z + 2 * N, st))
+            return fallback_step(st, z, D, t, err);
         if (Z == NULL) {
             memcpy(st->in + 2 * N + 1, st->U, (size_t)st->m * sizeof *st->U);
             hl_tape_eval_d(st->out, st->in, st->after);

@@ -6,11 +6,15 @@
  * solved here by bisection on P in long double with the difference quotient
  * written without cancellation:
  *   pendulum V = -cos q: (V(Q) - V(q))/(Q - q) = sin(m) sin(h/2)/(h/2);
+ *   V = -cos(3q)/9 (arguments 3 times longer: the long steps leave the
+ *     Taylor rule's reach): = sin(3m) sin(3h/2)/(3h/2) / 3;
  *   Morse V = (1 - e^-q)^2: = (e^-q - e^-Q)(2 - e^-q - e^-Q)/(Q - q), with
  *     e^-q - e^-Q = 2 e^-m sinh(h/2);
  *   quartic V = q^4/4: (Q^4 - q^4)/(4 (Q - q)) = (Q^3 + Q^2 q + Q q^2 + q^3)/4
- * (m = (q + Q)/2, h = Q - q).  Steps D = 0.01 to 1, several points: the
- * stepper's next point must equal the closed form's to 2e-15 relative.
+ * (m = (q + Q)/2, h = Q - q).  Steps D = 0.01 to 1.5, several points: the
+ * stepper's next point must equal the closed form's to 2e-15 relative
+ * (the long steps, beyond the Taylor rule's reach, taken again by the
+ * Gauss rule: hl_scheme_stepper_fallbacks; none for D <= 0.3).
  * Kepler (where the Gauss rule is the cheaper) is checked by energy: the
  * average vector field conserves H exactly, so |H(Z) - H(z)| is the rule's
  * error, at most 1e-14.
@@ -46,6 +50,13 @@ static ld quot_morse(ld q, ld Q)
     return expl(-m) * shc * (2 - expl(-q) - expl(-Q));
 }
 
+/* V = -cos(3q)/9: (V(Q) - V(q))/(Q - q) = sin(3m) sin(3x)/(3x) / 3 */
+static ld quot_cos3(ld q, ld Q)
+{
+    ld m = (q + Q) / 2, x = 3 * (Q - q) / 2;
+    return sinl(3 * m) * (x == 0 ? 1 : sinl(x) / x) / 3;
+}
+
 static ld quot_quartic(ld q, ld Q)
 {
     return (Q * Q * Q + Q * Q * q + Q * q * q + q * q * q) / 4;
@@ -67,22 +78,27 @@ static void avf_closed(double *z, double D, ld (*quot)(ld, ld))
     z[0] = (double)(q + D * (p + P) / 2), z[1] = (double)P;
 }
 
-static void against_closed_form(const char *H, ld (*quot)(ld, ld))
+static void against_closed_form(const char *H, ld (*quot)(ld, ld), int nsteps,
+                                long want_fallbacks)
 {
     hl_error err;
     hl_system_spec spec = {H, NULL, NULL, NULL};
     hl_system *sys = NULL;
     hl_scheme *s = NULL;
     hl_scheme_stepper *st = NULL;
-    if (hl_system_new(&sys, &spec, &err) != HL_OK || hl_scheme_new(&s, "avf", 0, sys, &err) != HL_OK ||
+    if (hl_system_new(&sys, &spec, &err) != HL_OK ||
+        hl_scheme_new(&s, "avf", 0, sys, &err) != HL_OK ||
         hl_scheme_stepper_new(&st, s, &err) != HL_OK) {
         CHECK_MSG(0, "%s: %s", H, err.msg);
         return;
     }
-    static const double steps[] = {0.01, 0.1, 0.3, 1.0};
+    static const double steps[] = {0.01, 0.1, 0.3, 1.0, 1.5};
     static const double pts[][2] = {{1.3, 0}, {0.2, 0.9}, {-0.7, 0.4}, {1e-9, 0.3}};
     double worst = 0;
-    for (int i = 0; i < 4; i++)
+    long short_fallbacks = 0;
+    for (int i = 0; i < nsteps; i++) {
+        if (i == 3)
+            short_fallbacks = hl_scheme_stepper_fallbacks(st);
         for (int j = 0; j < 4; j++) {
             double a[2] = {pts[j][0], pts[j][1]}, b[2] = {pts[j][0], pts[j][1]};
             CHECK_MSG(hl_scheme_step(st, a, steps[i], 0, &err) == HL_OK, "%s: %s", H, err.msg);
@@ -94,7 +110,16 @@ static void against_closed_form(const char *H, ld (*quot)(ld, ld))
                           pts[j][0], pts[j][1], a[k], b[k]);
             }
         }
-    printf("%-28s avf = closed form to %.1e\n", H, worst);
+    }
+    /* short steps by the Taylor rule alone; long ones (|Q - q| up to 1.4
+     * at D = 1.5) partly again by the Gauss rule */
+    long fallbacks = hl_scheme_stepper_fallbacks(st);
+    CHECK_MSG(short_fallbacks == 0, "%s: %ld steps of D <= 0.3 taken again", H, short_fallbacks);
+    CHECK_MSG(fallbacks >= want_fallbacks, "%s: %ld long steps taken again, want %ld", H,
+              fallbacks, want_fallbacks);
+    printf("%-28s avf = closed form to %.1e; %ld of the %d steps of D >= 1 taken again by the "
+           "Gauss rule\n",
+           H, worst, fallbacks, 4 * (nsteps - 3));
     hl_scheme_stepper_free(st);
     hl_scheme_free(s);
     hl_system_free(sys);
@@ -112,7 +137,8 @@ static void kepler_energy(void)
     hl_system *sys = NULL;
     hl_scheme *s = NULL;
     hl_scheme_stepper *st = NULL;
-    if (hl_system_new(&sys, &spec, &err) != HL_OK || hl_scheme_new(&s, "avf", 0, sys, &err) != HL_OK ||
+    if (hl_system_new(&sys, &spec, &err) != HL_OK ||
+        hl_scheme_new(&s, "avf", 0, sys, &err) != HL_OK ||
         hl_scheme_stepper_new(&st, s, &err) != HL_OK) {
         CHECK_MSG(0, "Kepler: %s", err.msg);
         return;
@@ -191,7 +217,8 @@ static void gonzalez_against_closed_form(void)
                           a[j], b[j]);
             }
         }
-        CHECK_MSG(its <= max_its[i] * 300, "gonzalez, D = %g: %.2f Newton iterations a step", steps[i],
+        CHECK_MSG(its <= max_its[i] * 300, "gonzalez, D = %g: %.2f Newton iterations a step",
+                  steps[i],
                   its / 300.0);
         printf("%-28s gonzalez, D = %g: closed form to %.1e, %.2f Newton iterations a step\n",
                "p^2/2 - cos(q)", steps[i], worst, its / 300.0);
@@ -232,9 +259,10 @@ static void gonzalez_order0(void)
 
 int main(void)
 {
-    against_closed_form("p^2/2 - cos(q)", quot_pendulum);
-    against_closed_form("p^2/2 + (1 - exp(-q))^2", quot_morse);
-    against_closed_form("p^2/2 + q^4/4", quot_quartic);
+    against_closed_form("p^2/2 - cos(q)", quot_pendulum, 5, 0);
+    against_closed_form("p^2/2 - cos(3*q)/9", quot_cos3, 4, 2);
+    against_closed_form("p^2/2 + (1 - exp(-q))^2", quot_morse, 5, 0);
+    against_closed_form("p^2/2 + q^4/4", quot_quartic, 5, 0);
     kepler_energy();
     gonzalez_against_closed_form();
     gonzalez_order0();
