@@ -78,7 +78,8 @@ int hl_scheme_stepper_jit(hl_scheme_stepper *st, long nsteps)
     if (st->all_explicit)
         return jit_if_it_pays(st->tape, nsteps);
     /* the next point is Newton's output (hl_newton_output): st->after is
-     * not evaluated per step */
+     * not evaluated per step.  The fallback (Gauss rules, for the long
+     * steps a Taylor rule cannot take) stays in the interpreter. */
     if (!hl_newton_jit_active(st->nw) && nsteps >= NEWTON_JIT_MIN_STEPS)
         hl_newton_jit(st->nw, NULL); /* on failure the interpreter goes on */
     if (hl_newton_jit_active(st->nw))
@@ -570,6 +571,8 @@ int hl_scheme_step(hl_scheme_stepper *st, double *z, double D, double t, hl_erro
         memcpy(z, st->out, (size_t)(2 * N) * sizeof *z);
     } else {
         int rc = newton(st, D, t, err);
+        if (rc != HL_OK && st->fallback != NULL) /* a Taylor rule far out of reach? */
+            return fallback_step(st, z, D, t, err);
         if (rc != HL_OK)
             return rc;
         /* the next point: Newton's convergence test has just computed it */
