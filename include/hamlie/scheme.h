@@ -236,9 +236,10 @@ int hl_scheme_stepper_jit(hl_scheme_stepper *st, long nsteps);
 /* Newton iterations taken by the last step (0 for an explicit scheme). */
 int hl_scheme_stepper_iterations(const hl_scheme_stepper *st);
 
-/* Steps taken again with Gauss-Legendre rules because a Taylor rule's
- * truncation was above rounding there (a long step: |Q - q| > 1.16 for the
- * pendulum's average vector field). */
+/* Steps taken with Gauss-Legendre rules since the last restart because a
+ * Taylor rule's truncation was above rounding there (a long step:
+ * |Q - q| > 1.16 for the pendulum's average vector field); once they are
+ * at least 64 and half of the steps, the Gauss rules take every step. */
 long hl_scheme_stepper_fallbacks(const hl_scheme_stepper *st);
 
 /* Set the count of steps taken (the step number in messages), e.g. to 0

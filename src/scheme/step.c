@@ -24,7 +24,9 @@ struct hl_scheme_stepper {
     int ncheck;     /* the checks, each to be at most its bound, */
     double *bound;
     hl_scheme_stepper *fallback; /* else the step by this one: Gauss rules */
-    long fallbacks;
+    long fallbacks;    /* steps it took since the restart */
+    int use_fallback;  /* for every step: it took most of them */
+    long jit_steps;    /* hl_scheme_stepper_jit's run length, for it too */
 };
 
 void hl_scheme_stepper_free(hl_scheme_stepper *st)
@@ -49,6 +51,7 @@ void hl_scheme_stepper_restart(hl_scheme_stepper *st, long steps)
 {
     st->steps = steps;
     st->iters = 0;
+    st->fallbacks = 0, st->use_fallback = 0;
 }
 
 /* Each step evaluates the step tape once (explicit) or the residual and
@@ -73,6 +76,7 @@ static int jit_if_it_pays(hl_tape *t, long evaluations)
 
 int hl_scheme_stepper_jit(hl_scheme_stepper *st, long nsteps)
 {
+    st->jit_steps = nsteps;
     if (!hl_tape_jit_available())
         return 0;
     if (st->all_explicit)
@@ -545,15 +549,24 @@ static int within_bounds(const double *c, const hl_scheme_stepper *st)
     return 1;
 }
 
-/* The step again with the Gauss rules, counted as this stepper's. */
+/* The step by the Gauss rules, counted as this stepper's.  When they take
+ * most steps (long ones, all beyond a Taylor rule's reach), they take all
+ * the next ones, compiled if this stepper was (decided by counts, so a run
+ * is reproducible). */
 static int fallback_step(hl_scheme_stepper *st, double *z, double D, double t, hl_error *err)
 {
     st->fallback->steps = st->steps;
     int rc = hl_scheme_step(st->fallback, z, D, t, err);
     st->iters = st->fallback->iters;
-    if (rc == HL_OK)
-        st->steps++, st->fallbacks++;
-    return rc;
+    if (rc != HL_OK)
+        return rc;
+    st->steps++, st->fallbacks++;
+    if (!st->use_fallback && st->fallbacks >= 64 && 2 * st->fallbacks >= st->steps) {
+        st->use_fallback = 1;
+        if (st->jit_steps > st->steps)
+            hl_scheme_stepper_jit(st->fallback, st->jit_steps - st->steps);
+    }
+    return HL_OK;
 }
 
 int hl_scheme_step(hl_scheme_stepper *st, double *z, double D, double t, hl_error *err)
@@ -570,6 +583,8 @@ int hl_scheme_step(hl_scheme_stepper *st, double *z, double D, double t, hl_erro
                                 st->steps + 1, t, D);
         memcpy(z, st->out, (size_t)(2 * N) * sizeof *z);
     } else {
+        if (st->use_fallback)
+            return fallback_step(st, z, D, t, err);
         int rc = newton(st, D, t, err);
         if (rc != HL_OK && st->fallback != NULL) /* a Taylor rule far out of reach? */
             return fallback_step(st, z, D, t, err);

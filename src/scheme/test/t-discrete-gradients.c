@@ -125,6 +125,46 @@ static void against_closed_form(const char *H, ld (*quot)(ld, ld), int nsteps,
     hl_system_free(sys);
 }
 
+/* A run of long steps (V = -cos(3q)/9, D = 1, from q = 0.2, p = 0.7):
+ * about three in four beyond the Taylor rule's reach; once the Gauss rules
+ * have taken 64 and half of the steps they take all (the last 100 here),
+ * and every step equals the closed form's to the Gauss rule's own
+ * truncation, about 1.9e-23 |a|^16 (|a| = 3|Q - q| up to 3.6 here). */
+static void long_steps(void)
+{
+    hl_error err;
+    hl_system_spec spec = {"p^2/2 - cos(3*q)/9", NULL, NULL, NULL};
+    hl_system *sys = NULL;
+    hl_scheme *s = NULL;
+    hl_scheme_stepper *st = NULL;
+    if (hl_system_new(&sys, &spec, &err) != HL_OK ||
+        hl_scheme_new(&s, "avf", 0, sys, &err) != HL_OK ||
+        hl_scheme_stepper_new(&st, s, &err) != HL_OK) {
+        CHECK_MSG(0, "long steps: %s", err.msg);
+        return;
+    }
+    double a[2] = {0.2, 0.7}, worst = 0;
+    long at200 = 0;
+    for (int k = 0; k < 300; k++) {
+        double b[2] = {a[0], a[1]};
+        CHECK_MSG(hl_scheme_step(st, a, 1.0, k, &err) == HL_OK, "long steps: %s", err.msg);
+        avf_closed(b, 1.0, quot_cos3);
+        for (int j = 0; j < 2; j++)
+            worst = fmax(worst, fabs(a[j] - b[j]) / fmax(1, fabs(b[j])));
+        if (k == 199)
+            at200 = hl_scheme_stepper_fallbacks(st);
+    }
+    long fb = hl_scheme_stepper_fallbacks(st);
+    CHECK_MSG(worst <= 5e-14, "long steps: %.3g from the closed form", worst);
+    CHECK_MSG(at200 < 200 && fb - at200 == 100, "long steps: %ld of the first 200 and %ld of the "
+              "last 100 by the Gauss rule", at200, fb - at200);
+    printf("%-28s avf, 300 steps of D = 1: closed form to %.1e, %ld by the Gauss rule\n",
+           "p^2/2 - cos(3*q)/9", worst, fb);
+    hl_scheme_stepper_free(st);
+    hl_scheme_free(s);
+    hl_system_free(sys);
+}
+
 static double kepler_H(const double *z)
 {
     return (z[2] * z[2] + z[3] * z[3]) / 2 - 1 / sqrt(z[0] * z[0] + z[1] * z[1]);
@@ -263,6 +303,7 @@ int main(void)
     against_closed_form("p^2/2 - cos(3*q)/9", quot_cos3, 4, 2);
     against_closed_form("p^2/2 + (1 - exp(-q))^2", quot_morse, 5, 0);
     against_closed_form("p^2/2 + q^4/4", quot_quartic, 5, 0);
+    long_steps();
     kepler_energy();
     gonzalez_against_closed_form();
     gonzalez_order0();
