@@ -83,7 +83,8 @@ int hl_scheme_stepper_jit(hl_scheme_stepper *st, long nsteps)
         return jit_if_it_pays(st->tape, nsteps);
     /* the next point is Newton's output (hl_newton_output): st->after is
      * not evaluated per step.  The fallback (Gauss rules, for the long
-     * steps a Taylor rule cannot take) stays in the interpreter. */
+     * steps a Taylor rule cannot take) is compiled only if it takes over
+     * (fallback_step). */
     if (!hl_newton_jit_active(st->nw) && nsteps >= NEWTON_JIT_MIN_STEPS)
         hl_newton_jit(st->nw, NULL); /* on failure the interpreter goes on */
     if (hl_newton_jit_active(st->nw))
