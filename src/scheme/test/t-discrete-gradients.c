@@ -62,6 +62,33 @@ static ld quot_quartic(ld q, ld Q)
     return (Q * Q * Q + Q * Q * q + Q * q * q + q * q * q) / 4;
 }
 
+/* A system, one of its catalog schemes and its stepper, or a failed check. */
+typedef struct fixture {
+    hl_system *sys;
+    hl_scheme *s;
+    hl_scheme_stepper *st;
+} fixture;
+
+static int fixture_open(fixture *f, const char *H, const char *scheme)
+{
+    hl_error err;
+    hl_system_spec spec = {H, NULL, NULL, NULL};
+    *f = (fixture){NULL, NULL, NULL};
+    if (hl_system_new(&f->sys, &spec, &err) == HL_OK &&
+        hl_scheme_new(&f->s, scheme, 0, f->sys, &err) == HL_OK &&
+        hl_scheme_stepper_new(&f->st, f->s, &err) == HL_OK)
+        return 1;
+    CHECK_MSG(0, "%s / %s: %s", H, scheme, err.msg);
+    return 0;
+}
+
+static void fixture_close(fixture *f)
+{
+    hl_scheme_stepper_free(f->st);
+    hl_scheme_free(f->s);
+    hl_system_free(f->sys);
+}
+
 /* P from the AVF equation by bisection (F increasing in P for these D). */
 static void avf_closed(double *z, double D, ld (*quot)(ld, ld))
 {
@@ -82,16 +109,10 @@ static void against_closed_form(const char *H, ld (*quot)(ld, ld), int nsteps,
                                 long want_fallbacks)
 {
     hl_error err;
-    hl_system_spec spec = {H, NULL, NULL, NULL};
-    hl_system *sys = NULL;
-    hl_scheme *s = NULL;
-    hl_scheme_stepper *st = NULL;
-    if (hl_system_new(&sys, &spec, &err) != HL_OK ||
-        hl_scheme_new(&s, "avf", 0, sys, &err) != HL_OK ||
-        hl_scheme_stepper_new(&st, s, &err) != HL_OK) {
-        CHECK_MSG(0, "%s: %s", H, err.msg);
+    fixture f;
+    if (!fixture_open(&f, H, "avf"))
         return;
-    }
+    hl_scheme_stepper *st = f.st;
     static const double steps[] = {0.01, 0.1, 0.3, 1.0, 1.5};
     static const double pts[][2] = {{1.3, 0}, {0.2, 0.9}, {-0.7, 0.4}, {1e-9, 0.3}};
     double worst = 0;
@@ -120,9 +141,7 @@ static void against_closed_form(const char *H, ld (*quot)(ld, ld), int nsteps,
     printf("%-28s avf = closed form to %.1e; %ld of the %d steps of D >= 1 taken again by the "
            "Gauss rule\n",
            H, worst, fallbacks, 4 * (nsteps - 3));
-    hl_scheme_stepper_free(st);
-    hl_scheme_free(s);
-    hl_system_free(sys);
+    fixture_close(&f);
 }
 
 /* A run of long steps (V = -cos(3q)/9, D = 1, from q = 0.2, p = 0.7):
@@ -133,16 +152,10 @@ static void against_closed_form(const char *H, ld (*quot)(ld, ld), int nsteps,
 static void long_steps(void)
 {
     hl_error err;
-    hl_system_spec spec = {"p^2/2 - cos(3*q)/9", NULL, NULL, NULL};
-    hl_system *sys = NULL;
-    hl_scheme *s = NULL;
-    hl_scheme_stepper *st = NULL;
-    if (hl_system_new(&sys, &spec, &err) != HL_OK ||
-        hl_scheme_new(&s, "avf", 0, sys, &err) != HL_OK ||
-        hl_scheme_stepper_new(&st, s, &err) != HL_OK) {
-        CHECK_MSG(0, "long steps: %s", err.msg);
+    fixture f;
+    if (!fixture_open(&f, "p^2/2 - cos(3*q)/9", "avf"))
         return;
-    }
+    hl_scheme_stepper *st = f.st;
     double a[2] = {0.2, 0.7}, worst = 0;
     long at200 = 0;
     for (int k = 0; k < 300; k++) {
@@ -160,9 +173,7 @@ static void long_steps(void)
               "last 100 by the Gauss rule", at200, fb - at200);
     printf("%-28s avf, 300 steps of D = 1: closed form to %.1e, %ld by the Gauss rule\n",
            "p^2/2 - cos(3*q)/9", worst, fb);
-    hl_scheme_stepper_free(st);
-    hl_scheme_free(s);
-    hl_system_free(sys);
+    fixture_close(&f);
 }
 
 static double kepler_H(const double *z)
@@ -173,16 +184,10 @@ static double kepler_H(const double *z)
 static void kepler_energy(void)
 {
     hl_error err;
-    hl_system_spec spec = {"(px^2+py^2)/2 - 1/sqrt(x^2+y^2)", NULL, NULL, NULL};
-    hl_system *sys = NULL;
-    hl_scheme *s = NULL;
-    hl_scheme_stepper *st = NULL;
-    if (hl_system_new(&sys, &spec, &err) != HL_OK ||
-        hl_scheme_new(&s, "avf", 0, sys, &err) != HL_OK ||
-        hl_scheme_stepper_new(&st, s, &err) != HL_OK) {
-        CHECK_MSG(0, "Kepler: %s", err.msg);
+    fixture f;
+    if (!fixture_open(&f, "(px^2+py^2)/2 - 1/sqrt(x^2+y^2)", "avf"))
         return;
-    }
+    hl_scheme_stepper *st = f.st;
     double z[4] = {0.5, 0, 0, 1.7320508075688772}, H0 = kepler_H(z), worst = 0;
     for (int k = 0; k < 200; k++) {
         CHECK_MSG(hl_scheme_step(st, z, 0.05, k * 0.05, &err) == HL_OK, "Kepler: %s", err.msg);
@@ -190,9 +195,7 @@ static void kepler_energy(void)
     }
     CHECK_MSG(worst <= 1e-14, "Kepler avf: |H - H0| up to %.3g", worst);
     printf("%-28s avf, 200 steps of 0.05: |H - H0| <= %.1e\n", "Kepler e = 0.5", worst);
-    hl_scheme_stepper_free(st);
-    hl_scheme_free(s);
-    hl_system_free(sys);
+    fixture_close(&f);
 }
 
 /* The Gonzalez step of the pendulum from its closed form (Newton with a
@@ -230,16 +233,10 @@ static void gonzalez_closed(double *z, double D)
 static void gonzalez_against_closed_form(void)
 {
     hl_error err;
-    hl_system_spec spec = {"p^2/2 - cos(q)", NULL, NULL, NULL};
-    hl_system *sys = NULL;
-    hl_scheme *s = NULL;
-    hl_scheme_stepper *st = NULL;
-    if (hl_system_new(&sys, &spec, &err) != HL_OK ||
-        hl_scheme_new(&s, "gonzalez", 0, sys, &err) != HL_OK ||
-        hl_scheme_stepper_new(&st, s, &err) != HL_OK) {
-        CHECK_MSG(0, "gonzalez: %s", err.msg);
+    fixture f;
+    if (!fixture_open(&f, "p^2/2 - cos(q)", "gonzalez"))
         return;
-    }
+    hl_scheme_stepper *st = f.st;
     static const double steps[] = {0.01, 0.1, 0.3}, max_its[] = {3.5, 4.5, 6};
     double worst = 0;
     for (int i = 0; i < 3; i++) {
@@ -263,9 +260,7 @@ static void gonzalez_against_closed_form(void)
         printf("%-28s gonzalez, D = %g: closed form to %.1e, %.2f Newton iterations a step\n",
                "p^2/2 - cos(q)", steps[i], worst, its / 300.0);
     }
-    hl_scheme_stepper_free(st);
-    hl_scheme_free(s);
-    hl_system_free(sys);
+    fixture_close(&f);
 }
 
 /* Gonzalez's remainder int_0^1 (grad H(z + s d) - grad H(m)).d ds: its
