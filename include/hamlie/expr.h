@@ -17,10 +17,12 @@
  *            | expr ('*'|'/') expr          left associative
  *            | ('-'|'+') expr               unary, looser than ^: -x^2 = -(x^2)
  *            | expr ('^'|'**') expr         right associative: a^b^c = a^(b^c)
- *            | number | symbol | 'pi' | func '(' expr ')' | '(' expr ')'
+ *            | number | symbol | 'pi' | func '(' expr ')' | func2 '(' expr ',' expr ')'
+ *            | '(' expr ')'
  *   number  := digits ['.' digits] [('e'|'E') ['+'|'-'] digits]   exact rational
  *   symbol  := letter {letter | digit | '_'}
  *   func    := sin cos tan exp log sqrt atan asin acos sinh cosh tanh
+ *   func2   := atan2                  atan2(y, x): the angle of (x, y), in (-pi, pi]
  */
 #ifndef HAMLIE_EXPR_H
 #define HAMLIE_EXPR_H
@@ -42,12 +44,13 @@ typedef enum hl_expr_kind {
     HL_MUL, /* a * b */
     HL_DIV, /* a / b */
     HL_POW, /* a ^ b */
-    HL_FUN  /* fun(a) */
+    HL_FUN  /* fun(a), or fun(a, b) for a function of two arguments (atan2) */
 } hl_expr_kind;
 
 typedef enum hl_fun {
     HL_SIN, HL_COS, HL_TAN, HL_EXP, HL_LOG, HL_SQRT,
     HL_ATAN, HL_ASIN, HL_ACOS, HL_SINH, HL_COSH, HL_TANH,
+    HL_ATAN2, /* atan2(y, x), two arguments: a = y, b = x (libm's order) */
     HL_FUN_COUNT
 } hl_fun;
 
@@ -59,7 +62,7 @@ struct hl_expr {
     unsigned long hash;   /* structural hash */
     fmpq_t num;           /* HL_NUM only (canonical: reduced, positive denominator) */
     const char *name;     /* HL_SYM only; interned in the pool */
-    const hl_expr *a, *b; /* operands: NEG and FUN use a; binary kinds use a, b */
+    const hl_expr *a, *b; /* operands: NEG and FUN use a (atan2 also b); binary kinds a, b */
 };
 
 typedef struct hl_pool hl_pool;
@@ -81,10 +84,14 @@ const hl_expr *hl_mul(hl_pool *pool, const hl_expr *a, const hl_expr *b);
 const hl_expr *hl_div(hl_pool *pool, const hl_expr *a, const hl_expr *b);
 const hl_expr *hl_pow(hl_pool *pool, const hl_expr *a, const hl_expr *b);
 const hl_expr *hl_call(hl_pool *pool, hl_fun f, const hl_expr *a);
+/* A function of two arguments: f(a, b) (hl_fun_arity(f) == 2). */
+const hl_expr *hl_call2(hl_pool *pool, hl_fun f, const hl_expr *a, const hl_expr *b);
 
 /* Name of a function as written ("sin"), and lookup by name (-1 if none). */
 const char *hl_fun_name(hl_fun f);
 int hl_fun_lookup(const char *name, int len);
+/* How many arguments f takes: 1, or 2 for atan2. */
+int hl_fun_arity(hl_fun f);
 
 /* ---- parsing ---------------------------------------------------------- */
 

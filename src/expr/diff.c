@@ -57,6 +57,17 @@ static const hl_expr *d_pow(diff_walk *w, const hl_expr *e)
     return hl_fold_mul(pool, e, t);
 }
 
+/* atan2(y, x)' = (x y' - y x')/(x^2 + y^2) */
+static const hl_expr *d_atan2(diff_walk *w, const hl_expr *e)
+{
+    hl_pool *pool = w->pool;
+    const hl_expr *y = e->a, *x = e->b, *dy = d(w, y), *dx = d(w, x), *two = hl_num_si(pool, 2);
+    const hl_expr *num = hl_fold_sub(pool, hl_fold_mul(pool, x, dy), hl_fold_mul(pool, y, dx));
+    if (hl_fold_is_num(num, 0))
+        return num;
+    return hl_fold_div(pool, num, hl_add(pool, hl_pow(pool, x, two), hl_pow(pool, y, two)));
+}
+
 static const hl_expr *d(diff_walk *w, const hl_expr *e)
 {
     hl_memo_val *v = hl_memo_get(&w->done, e);
@@ -97,6 +108,10 @@ static const hl_expr *d(diff_walk *w, const hl_expr *e)
         r = d_pow(w, e);
         break;
     case HL_FUN:
+        if (e->b != NULL) {
+            r = d_atan2(w, e);
+            break;
+        }
         da = d(w, e->a);
         r = hl_fold_is_num(da, 0) ? da : hl_fold_mul(pool, fun_deriv(pool, e->fun, e, e->a), da);
         break;

@@ -162,6 +162,7 @@ int hl_lex_next(hl_lexer *lx, hl_error *err)
     case ')': lx->tok.kind = HL_TK_RPAREN; return HL_OK;
     case '=': lx->tok.kind = HL_TK_EQ; return HL_OK;
     case ';': lx->tok.kind = HL_TK_SEMI; return HL_OK;
+    case ',': lx->tok.kind = HL_TK_COMMA; return HL_OK;
     case '*':
         if (s[p + 1] == '*') { /* ** is ^ */
             lx->tok.kind = HL_TK_POW;

@@ -17,7 +17,8 @@ typedef enum hl_tok_kind {
     HL_TK_LPAREN, /* ( */
     HL_TK_RPAREN, /* ) */
     HL_TK_EQ,     /* = */
-    HL_TK_SEMI    /* ; */
+    HL_TK_SEMI,   /* ; */
+    HL_TK_COMMA   /* , between the arguments of atan2 */
 } hl_tok_kind;
 
 typedef struct hl_token {

@@ -86,7 +86,22 @@ static int close_paren(parser *p, hl_token open)
     return next(p);
 }
 
-/* simple := number | 'pi' | symbol | func '(' expr ')' | '(' expr ')' */
+/* ',' expr: the second argument of a function of two (atan2(y, x)). */
+static int second_argument(parser *p, hl_fun f, value *arg2)
+{
+    int st;
+    if (p->lx.tok.kind != HL_TK_COMMA)
+        return hl_error_set(p->err, HL_EPARSE, p->src, p->lx.tok.pos, 1,
+                            "expected ',': '%s' takes two arguments", hl_fun_name(f));
+    if ((st = next(p)))
+        return st;
+    if (!starts_operand(p->lx.tok.kind))
+        return expected_expression(p);
+    return subexpr(p, 0, arg2);
+}
+
+/* simple := number | 'pi' | symbol | func '(' expr ')' | func2 '(' expr ',' expr ')'
+ *         | '(' expr ')' */
 static int simpleexp(parser *p, value *v)
 {
     hl_token t = p->lx.tok;
@@ -133,11 +148,21 @@ static int simpleexp(parser *p, value *v)
     if (open.kind != HL_TK_LPAREN)
         return hl_error_set(p->err, HL_EPARSE, p->src, open.pos, open.len,
                             "expected '(' after '%s'", hl_fun_name((hl_fun)f));
-    value arg;
-    if ((st = enter(p, open)) || (st = next(p)) || (st = subexpr(p, 0, &arg)) ||
-        (st = close_paren(p, open)))
+    value arg, arg2;
+    if ((st = enter(p, open)) || (st = next(p)) || (st = subexpr(p, 0, &arg)))
         return st;
-    v->e = hl_call(p->pool, (hl_fun)f, arg.e);
+    if (hl_fun_arity((hl_fun)f) == 1) {
+        if (p->lx.tok.kind == HL_TK_COMMA)
+            return hl_error_set(p->err, HL_EPARSE, p->src, p->lx.tok.pos, 1,
+                                "'%s' takes one argument", hl_fun_name((hl_fun)f));
+        if ((st = close_paren(p, open)))
+            return st;
+        v->e = hl_call(p->pool, (hl_fun)f, arg.e);
+        return HL_OK;
+    }
+    if ((st = second_argument(p, (hl_fun)f, &arg2)) || (st = close_paren(p, open)))
+        return st;
+    v->e = hl_call2(p->pool, (hl_fun)f, arg.e, arg2.e);
     return HL_OK;
 }
 

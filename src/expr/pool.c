@@ -31,12 +31,17 @@ struct hl_pool {
 
 static const char *const fun_names[HL_FUN_COUNT] = {
     "sin", "cos", "tan", "exp", "log", "sqrt",
-    "atan", "asin", "acos", "sinh", "cosh", "tanh",
+    "atan", "asin", "acos", "sinh", "cosh", "tanh", "atan2",
 };
 
 const char *hl_fun_name(hl_fun f)
 {
     return (unsigned)f < HL_FUN_COUNT ? fun_names[f] : "?";
+}
+
+int hl_fun_arity(hl_fun f)
+{
+    return f == HL_ATAN2 ? 2 : 1;
 }
 
 int hl_fun_lookup(const char *name, int len)
@@ -116,7 +121,7 @@ static int node_equal(const hl_expr *x, const hl_expr *y)
     case HL_NUM: return fmpq_equal(x->num, y->num);
     case HL_SYM: return x->name == y->name;
     case HL_PI: return 1;
-    case HL_FUN: return x->fun == y->fun && x->a == y->a;
+    case HL_FUN: return x->fun == y->fun && x->a == y->a && x->b == y->b;
     default: return x->a == y->a && x->b == y->b;
     }
 }
@@ -263,3 +268,4 @@ const hl_expr *hl_mul(hl_pool *pool, const hl_expr *a, const hl_expr *b) { retur
 const hl_expr *hl_div(hl_pool *pool, const hl_expr *a, const hl_expr *b) { return make(pool, HL_DIV, 0, a, b); }
 const hl_expr *hl_pow(hl_pool *pool, const hl_expr *a, const hl_expr *b) { return make(pool, HL_POW, 0, a, b); }
 const hl_expr *hl_call(hl_pool *pool, hl_fun f, const hl_expr *a) { return make(pool, HL_FUN, f, a, NULL); }
+const hl_expr *hl_call2(hl_pool *pool, hl_fun f, const hl_expr *a, const hl_expr *b) { return make(pool, HL_FUN, f, a, b); }

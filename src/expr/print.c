@@ -220,6 +220,14 @@ static void print_plain(hl_buf *b, hl_style st, const hl_expr *e)
         break;
     case HL_FUN: /* C prints a fraction in parentheses already */
         hl_buf_puts(b, hl_fun_name(e->fun));
+        if (e->b != NULL) { /* atan2(y, x): the same name in text, SymPy and C */
+            hl_buf_putc(b, '(');
+            print_plain(b, st, e->a);
+            hl_buf_puts(b, ", ");
+            print_plain(b, st, e->b);
+            hl_buf_putc(b, ')');
+            break;
+        }
         print_group(b, st, e->a,
                     !(st == HL_STYLE_C && e->a->kind == HL_NUM && !num_is_int(e->a)));
         break;
@@ -324,7 +332,7 @@ static const char *const latex_fun[HL_FUN_COUNT] = {
     [HL_SIN] = "\\sin", [HL_COS] = "\\cos", [HL_TAN] = "\\tan", [HL_EXP] = "\\exp",
     [HL_LOG] = "\\log", [HL_SQRT] = "\\sqrt", [HL_ATAN] = "\\arctan",
     [HL_ASIN] = "\\arcsin", [HL_ACOS] = "\\arccos", [HL_SINH] = "\\sinh",
-    [HL_COSH] = "\\cosh", [HL_TANH] = "\\tanh",
+    [HL_COSH] = "\\cosh", [HL_TANH] = "\\tanh", [HL_ATAN2] = "\\operatorname{atan2}",
 };
 
 static void latex(hl_buf *b, const hl_expr *e);
@@ -414,6 +422,15 @@ static void latex(hl_buf *b, const hl_expr *e)
         latex_group(b, e->a, latex_sum(e->a) || latex_minus(e->a));
         break;
     case HL_FUN:
+        if (e->b != NULL) { /* \operatorname{atan2}\left(y, x\right) */
+            hl_buf_puts(b, latex_fun[e->fun]);
+            hl_buf_puts(b, "\\left(");
+            latex(b, e->a);
+            hl_buf_puts(b, ", ");
+            latex(b, e->b);
+            hl_buf_puts(b, "\\right)");
+            break;
+        }
         latex_call(b, e->fun, e->a, NULL);
         break;
     case HL_ADD:

@@ -313,6 +313,34 @@ static void arc_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *
     free(x), free(one_minus);
 }
 
+/* r = atan2(y, x): r' = g/s with g = x y' - y x', s = x^2 + y^2, so
+ * r[k] = (g/s)[k-1] / k */
+static void atan2_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *y,
+                         const hl_expr *const *x)
+{
+    hl_pool *pool = w->pool;
+    int K = w->K;
+    const hl_expr **g = hl_xmalloc((size_t)(K + 1) * sizeof *g);
+    const hl_expr **s = hl_xmalloc((size_t)(K + 1) * sizeof *s);
+    const hl_expr **h = hl_xmalloc((size_t)(K + 1) * sizeof *h);
+    for (int m = 0; m <= K; m++) {
+        g[m] = w->zero;
+        s[m] = hl_fold_add(pool, cauchy(w, x, x, m), cauchy(w, y, y, m));
+    }
+    for (int m = 0; m < K; m++) /* g[m] = sum_j (j+1) (x[m-j] y[j+1] - y[m-j] x[j+1]) */
+        for (int j = 0; j <= m; j++) {
+            const hl_expr *c = num(w, j + 1, 1);
+            const hl_expr *t = hl_fold_sub(pool, hl_fold_mul(pool, x[m - j], y[j + 1]),
+                                           hl_fold_mul(pool, y[m - j], x[j + 1]));
+            g[m] = hl_fold_add(pool, g[m], hl_fold_mul(pool, c, t));
+        }
+    div_series(w, h, g, s);
+    r[0] = hl_call2(pool, HL_ATAN2, y[0], x[0]);
+    for (int k = 1; k <= K; k++)
+        r[k] = hl_fold_mul(pool, num(w, 1, (unsigned long)k), h[k - 1]);
+    free(g), free(s), free(h);
+}
+
 static const hl_expr *const *series_of(taylor_walk *w, const hl_expr *e);
 
 static void fun_series(taylor_walk *w, const hl_expr **r, const hl_expr *e, const hl_expr *const *a)
@@ -391,9 +419,12 @@ static void node_series(taylor_walk *w, const hl_expr **r, const hl_expr *e)
             free(l), free(bl);
         }
         return;
-    default:
-        fun_series(w, r, e, a);
-        return; /* HL_FUN */
+    default: /* HL_FUN */
+        if (e->fun == HL_ATAN2)
+            atan2_series(w, r, a, b);
+        else
+            fun_series(w, r, e, a);
+        return;
     }
 }
 

@@ -113,7 +113,7 @@ static const hl_expr *rebuild(hl_pool *pool, const hl_expr *e, const hl_expr *a,
         return e;
     switch (e->kind) {
     case HL_NEG: return hl_neg(pool, a);
-    case HL_FUN: return hl_call(pool, e->fun, a);
+    case HL_FUN: return b != NULL ? hl_call2(pool, e->fun, a, b) : hl_call(pool, e->fun, a);
     case HL_ADD: return hl_add(pool, a, b);
     case HL_SUB: return hl_sub(pool, a, b);
     case HL_MUL: return hl_mul(pool, a, b);
@@ -229,7 +229,7 @@ static int eval(eval_walk *w, const hl_expr *e, double *out)
     case HL_MUL: r = a * b; break;
     case HL_DIV: r = a / b; break;
     case HL_POW: r = pow(a, b); break;
-    case HL_FUN: r = apply_fun(e->fun, a); break;
+    case HL_FUN: r = e->fun == HL_ATAN2 ? atan2(a, b) : apply_fun(e->fun, a); break;
     default: r = NAN;
     }
     hl_memo_put(&w->done, e)->d = r;

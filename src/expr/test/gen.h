@@ -69,7 +69,12 @@ static const hl_expr *gen_expr(gen *g, hl_pool *pool, int depth)
     case 9: case 10:
         e = hl_pow(pool, gen_expr(g, pool, depth - 1), gen_expr(g, pool, depth - 1));
         break;
-    default: e = hl_call(pool, (hl_fun)gen_int(g, HL_FUN_COUNT), gen_expr(g, pool, depth - 1));
+    default: {
+        hl_fun f = (hl_fun)gen_int(g, HL_FUN_COUNT);
+        const hl_expr *a = gen_expr(g, pool, depth - 1);
+        e = hl_fun_arity(f) == 2 ? hl_call2(pool, f, a, gen_expr(g, pool, depth - 1))
+                                 : hl_call(pool, f, a);
+    }
     }
     if (g->nmade < 64)
         g->made[g->nmade++] = e;

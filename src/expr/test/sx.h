@@ -42,7 +42,7 @@ static inline const hl_expr *sx_read(hl_pool *pool, const char **s)
             fprintf(stderr, "sx: bad head %s\n", head);
             abort();
         }
-        return hl_call(pool, (hl_fun)f, a);
+        return b != NULL ? hl_call2(pool, (hl_fun)f, a, b) : hl_call(pool, (hl_fun)f, a);
     }
     char atom[256];
     int n = 0;

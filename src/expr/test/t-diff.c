@@ -115,8 +115,11 @@ static int tame(const hl_expr *e, const char *const *names, const double *v)
     double r;
     if (hl_expr_eval_d(&r, e, 8, names, v, NULL) || !isfinite(r) || fabs(r) > 1e6)
         return 0;
-    if (e->kind == HL_POW && hl_expr_eval_d(&r, e->a, 8, names, v, NULL) == HL_OK && r == 0)
-        return 0; /* 0^b: log(0) in the derivative, a boundary point */
+    if (e->kind == HL_POW && hl_expr_eval_d(&r, e->a, 8, names, v, NULL) == HL_OK && r <= 0)
+        return 0; /* 0^b, (-2)^b: log(a) in the derivative, no real power around */
+    if (e->kind == HL_FUN && (e->fun == HL_ASIN || e->fun == HL_ACOS) &&
+        hl_expr_eval_d(&r, e->a, 8, names, v, NULL) == HL_OK && fabs(r) >= 1)
+        return 0; /* asin(-1): the edge of the domain, derivative infinite */
     return (e->a == NULL || tame(e->a, names, v)) && (e->b == NULL || tame(e->b, names, v));
 }
 
