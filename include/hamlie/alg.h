@@ -161,6 +161,12 @@ int hl_alg_is_canonical(const hl_alg *a, const hl_alg_ctx *ctx);
  * known (sin 0, sqrt(9/4), cos(pi/3), log 1); HL_EDOM outside the domain. */
 int hl_alg_apply(hl_alg *r, hl_fun f, const hl_alg *a, hl_alg_ctx *ctx, hl_error *err);
 
+/* r = f(a, b) for a function of two arguments: atan2(y, x), the angle of
+ * (x, y) in (-pi, pi].  Exact where y and x are rational (atan2(0, 0) is
+ * HL_EDOM); atan(y/x) where x is a positive number; odd in y. */
+int hl_alg_apply2(hl_alg *r, hl_fun f, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx,
+                  hl_error *err);
+
 /* r = pi. */
 int hl_alg_pi(hl_alg *r, hl_alg_ctx *ctx, hl_error *err);
 

@@ -23,13 +23,15 @@ typedef enum alg_atom_kind {
     ATOM_ATAN,
     ATOM_ASIN,
     ATOM_ACOS,
-    ATOM_PI
+    ATOM_PI,
+    ATOM_ATAN2 /* atan2(arg, arg2): the angle of (arg2, arg) */
 } alg_atom_kind;
 
 typedef struct alg_atom {
     alg_atom_kind kind;
     long q;            /* ATOM_ROOT: the root's degree */
     hl_alg arg;        /* canonical argument (unused for ATOM_PI) */
+    hl_alg arg2;       /* ATOM_ATAN2: the second argument (x of atan2(y, x)) */
     int var;           /* its mpoly variable */
     int partner;       /* sin <-> cos: the other atom's index, else -1 */
     int family;        /* atoms of one family are handled exactly together */
@@ -68,6 +70,9 @@ static inline const alg_atom *alg_var_atom(const hl_alg_ctx *ctx, int v)
  * roots).  For SIN/COS both atoms of the pair are made. */
 int alg_atom_get(int *var, alg_atom_kind kind, long q, const hl_alg *arg, hl_alg_ctx *ctx,
                  hl_error *err);
+/* The same for an atom of two arguments (ATOM_ATAN2). */
+int alg_atom_get2(int *var, alg_atom_kind kind, long q, const hl_alg *arg, const hl_alg *arg2,
+                  hl_alg_ctx *ctx, hl_error *err);
 /* Does the polynomial p involve variable v? */
 int alg_poly_has_var(const fmpz_mpoly_t p, int v, const hl_alg_ctx *ctx);
 

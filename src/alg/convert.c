@@ -86,8 +86,11 @@ static int convert(hl_alg *r, const hl_expr *e, memo *m, hl_alg_ctx *ctx, hl_err
         return HL_OK;
     }
     case HL_PI: return hl_alg_pi(r, ctx, err);
-    case HL_NEG:
     case HL_FUN:
+        if (e->b != NULL)
+            break; /* atan2(y, x): both operands, below */
+        /* fall through */
+    case HL_NEG:
         hl_alg_init(&a, ctx);
         status = value(&a, e->a, m, ctx, err);
         if (status == HL_OK) {
@@ -113,6 +116,7 @@ static int convert(hl_alg *r, const hl_expr *e, memo *m, hl_alg_ctx *ctx, hl_err
         case HL_MUL: hl_alg_mul(r, &a, &b, ctx); break;
         case HL_DIV: status = hl_alg_div(r, &a, &b, ctx, err); break;
         case HL_POW: status = hl_alg_pow(r, &a, &b, ctx, err); break;
+        case HL_FUN: status = hl_alg_apply2(r, e->fun, &a, &b, ctx, err); break;
         default: status = hl_error_set(err, HL_EINVAL, NULL, -1, 0, "bad expression node");
         }
     }

@@ -36,6 +36,7 @@ hl_alg_ctx *hl_alg_ctx_new(int nbase, const char *const *names, int max_atoms)
 static void atom_clear(alg_atom *at, hl_alg_ctx *ctx)
 {
     hl_alg_clear(&at->arg, ctx);
+    hl_alg_clear(&at->arg2, ctx);
     fmpz_mpoly_clear(at->rel_rhs, ctx->mctx);
     for (int v = 0; v < ctx->nbase; v++)
         hl_alg_clear(&at->dcache[v], ctx);
@@ -100,15 +101,31 @@ static int poly_has_atoms(const fmpz_mpoly_t p, const hl_alg_ctx *ctx)
     return 0;
 }
 
+static int same_alg(const hl_alg *a, const hl_alg *b, const hl_alg_ctx *ctx)
+{
+    return fmpz_mpoly_equal(a->num, b->num, ctx->mctx) && fmpz_mpoly_equal(a->den, b->den, ctx->mctx);
+}
+
 static int atom_matches(const alg_atom *at, alg_atom_kind kind, long q, const hl_alg *arg,
-                        const hl_alg_ctx *ctx)
+                        const hl_alg *arg2, const hl_alg_ctx *ctx)
 {
     if (at->kind != kind || at->q != q)
         return 0;
     if (kind == ATOM_PI)
         return 1;
-    return fmpz_mpoly_equal(at->arg.num, arg->num, ctx->mctx)
-        && fmpz_mpoly_equal(at->arg.den, arg->den, ctx->mctx);
+    return same_alg(&at->arg, arg, ctx) && (arg2 == NULL || same_alg(&at->arg2, arg2, ctx));
+}
+
+/* The base symbols and atoms the second argument brings (ATOM_ATAN2). */
+static void atom_add_arg2(alg_atom *at, const hl_alg *arg2, hl_alg_ctx *ctx)
+{
+    unsigned char *dep2 = hl_xcalloc((size_t)ctx->nbase + 1, 1);
+    hl_alg_set(&at->arg2, arg2, ctx);
+    alg_depends_mask(dep2, arg2, ctx);
+    for (int v = 0; v < ctx->nbase; v++)
+        at->dep[v] |= dep2[v];
+    free(dep2);
+    at->nested |= poly_has_atoms(arg2->num, ctx) || poly_has_atoms(arg2->den, ctx);
 }
 
 static void atom_init(alg_atom *at, alg_atom_kind kind, long q, const hl_alg *arg, int family,
@@ -122,6 +139,7 @@ static void atom_init(alg_atom *at, alg_atom_kind kind, long q, const hl_alg *ar
     at->partner = -1;
     at->family = family;
     hl_alg_init(&at->arg, ctx);
+    hl_alg_init(&at->arg2, ctx);
     if (arg != NULL)
         hl_alg_set(&at->arg, arg, ctx);
     fmpz_mpoly_init(at->rel_rhs, ctx->mctx);
@@ -139,10 +157,16 @@ static void atom_init(alg_atom *at, alg_atom_kind kind, long q, const hl_alg *ar
 int alg_atom_get(int *var, alg_atom_kind kind, long q, const hl_alg *arg, hl_alg_ctx *ctx,
                  hl_error *err)
 {
+    return alg_atom_get2(var, kind, q, arg, NULL, ctx, err);
+}
+
+int alg_atom_get2(int *var, alg_atom_kind kind, long q, const hl_alg *arg, const hl_alg *arg2,
+                  hl_alg_ctx *ctx, hl_error *err)
+{
     alg_atom_kind look = kind == ATOM_COS ? ATOM_SIN : kind;
     for (int k = 0; k < ctx->natoms; k++) {
         const alg_atom *at = &ctx->atoms[k];
-        if (atom_matches(at, look, q, arg, ctx)) {
+        if (atom_matches(at, look, q, arg, arg2, ctx)) {
             *var = kind == ATOM_COS ? ctx->atoms[at->partner].var : at->var;
             return HL_OK;
         }
@@ -154,6 +178,8 @@ int alg_atom_get(int *var, alg_atom_kind kind, long q, const hl_alg *arg, hl_alg
     int k = ctx->natoms;
     alg_atom *at = &ctx->atoms[k];
     atom_init(at, look, q, arg, k, ctx);
+    if (arg2 != NULL)
+        atom_add_arg2(at, arg2, ctx);
     switch (look) {
     case ATOM_SQRT:
         at->rel_deg = 2;

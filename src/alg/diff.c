@@ -20,10 +20,40 @@ static void times_frac(hl_alg *r, const hl_alg *da, const fmpz_mpoly_t fnum,
     hl_alg_clear(&f, ctx);
 }
 
+/* d atan2(y, x)/dv = (x y' - y x')/(x^2 + y^2) */
+static int atan2_deriv(hl_alg *r, const alg_atom *at, int v, hl_alg_ctx *ctx, hl_error *err)
+{
+    const hl_alg *y = &at->arg, *x = &at->arg2;
+    hl_alg dy, dx, s, t;
+    hl_alg_init(&dy, ctx);
+    hl_alg_init(&dx, ctx);
+    hl_alg_init(&s, ctx);
+    hl_alg_init(&t, ctx);
+    int status = hl_alg_diff(&dy, y, v, ctx, err);
+    if (status == HL_OK)
+        status = hl_alg_diff(&dx, x, v, ctx, err);
+    if (status == HL_OK) {
+        hl_alg_mul(&t, x, &dy, ctx);
+        hl_alg_mul(&s, y, &dx, ctx);
+        hl_alg_sub(&t, &t, &s, ctx);
+        hl_alg_mul(&s, x, x, ctx);
+        hl_alg_mul(&dy, y, y, ctx);
+        hl_alg_add(&s, &s, &dy, ctx);
+        status = hl_alg_div(r, &t, &s, ctx, err);
+    }
+    hl_alg_clear(&dy, ctx);
+    hl_alg_clear(&dx, ctx);
+    hl_alg_clear(&s, ctx);
+    hl_alg_clear(&t, ctx);
+    return status;
+}
+
 /* d(atom k)/d(base v), uncached. */
 static int atom_deriv(hl_alg *r, int k, int v, hl_alg_ctx *ctx, hl_error *err)
 {
     alg_atom *at = &ctx->atoms[k];
+    if (at->kind == ATOM_ATAN2)
+        return atan2_deriv(r, at, v, ctx, err);
     const fmpz_mpoly_ctx_struct *mc = ctx->mctx;
     hl_alg da, t;
     hl_alg_init(&da, ctx);
@@ -74,7 +104,8 @@ static int atom_deriv(hl_alg *r, int k, int v, hl_alg_ctx *ctx, hl_error *err)
         if (status == HL_OK && at->kind == ATOM_ACOS)
             hl_alg_neg(r, r, ctx);
         break;
-    case ATOM_PI: break;
+    case ATOM_PI:
+    case ATOM_ATAN2: break; /* pi: 0 above; atan2: atan2_deriv */
     }
 done:
     fmpz_mpoly_clear(n, mc);

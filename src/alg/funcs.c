@@ -425,8 +425,83 @@ int hl_alg_apply(hl_alg *r, hl_fun f, const hl_alg *a, hl_alg_ctx *ctx, hl_error
     case HL_SINH:
     case HL_COSH:
     case HL_TANH: return hyperbolic(r, f, a, ctx, err);
+    case HL_ATAN2: return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "'atan2' takes two arguments");
     default: return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "unknown function");
     }
+}
+
+/* pi * num/den */
+static int pi_times(hl_alg *r, long num, ulong den, hl_alg_ctx *ctx, hl_error *err)
+{
+    int status = hl_alg_pi(r, ctx, err);
+    if (status == HL_OK) {
+        fmpq_t c;
+        fmpq_init(c);
+        fmpq_set_si(c, num, den);
+        hl_alg_scalar_mul_fmpq(r, r, c, ctx);
+        fmpq_clear(c);
+    }
+    return status;
+}
+
+/* atan2(y, x) for a constant x: atan(y/x), plus pi sgn(y) for x < 0 where
+ * y is a constant too; x = 0 gives pi/2 sgn(y).  Returns -1 where neither
+ * applies. */
+static int atan2_const_x(hl_alg *r, const hl_alg *y, const hl_alg *x, hl_alg_ctx *ctx,
+                         hl_error *err)
+{
+    int sx = const_sgn(x, ctx), sy = const_sgn(y, ctx);
+    if (sx == 2 || (sx <= 0 && sy == 2))
+        return -1;
+    if (sx == 0 && sy == 0)
+        return hl_error_set(err, HL_EDOM, NULL, -1, 0, "atan2(0, 0) is undefined");
+    if (sx == 0)
+        return pi_times(r, sy, 2, ctx, err);
+    hl_alg t, c;
+    hl_alg_init(&t, ctx);
+    hl_alg_init(&c, ctx);
+    int status = hl_alg_div(&t, y, x, ctx, err);
+    if (status == HL_OK)
+        status = alg_odd_atom(r, ATOM_ATAN, &t, ctx, err);
+    if (status == HL_OK && sx < 0) /* y = 0, x < 0: pi, the upper side of the cut */
+        status = pi_times(&c, sy < 0 ? -1 : 1, 1, ctx, err);
+    if (status == HL_OK && sx < 0)
+        hl_alg_add(r, r, &c, ctx);
+    hl_alg_clear(&t, ctx);
+    hl_alg_clear(&c, ctx);
+    return status;
+}
+
+/* atan2(y, x), odd in y: -atan2(-y, x) for a "negative" y. */
+static int alg_atan2(hl_alg *r, const hl_alg *y, const hl_alg *x, hl_alg_ctx *ctx, hl_error *err)
+{
+    int status = atan2_const_x(r, y, x, ctx, err);
+    if (status >= 0)
+        return status;
+    if (!is_negative(y)) {
+        int v;
+        status = alg_atom_get2(&v, ATOM_ATAN2, 0, y, x, ctx, err);
+        if (status == HL_OK)
+            alg_set_var(r, v, ctx);
+        return status;
+    }
+    hl_alg m;
+    hl_alg_init(&m, ctx);
+    hl_alg_neg(&m, y, ctx);
+    status = alg_atan2(r, &m, x, ctx, err);
+    if (status == HL_OK)
+        hl_alg_neg(r, r, ctx);
+    hl_alg_clear(&m, ctx);
+    return status;
+}
+
+int hl_alg_apply2(hl_alg *r, hl_fun f, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx,
+                  hl_error *err)
+{
+    if (f != HL_ATAN2)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "'%s' takes one argument",
+                            hl_fun_name(f));
+    return alg_atan2(r, a, b, ctx, err);
 }
 
 int hl_alg_pow(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx, hl_error *err)

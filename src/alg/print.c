@@ -187,6 +187,8 @@ static const hl_expr *atom_expr(printer *pr, int k)
                                  HL_LOG, HL_ATAN, HL_ASIN, HL_ACOS, HL_SQRT};
     if (at->kind == ATOM_PI)
         e = hl_pi(pr->pool);
+    else if (at->kind == ATOM_ATAN2)
+        e = hl_call2(pr->pool, HL_ATAN2, arg, frac_expr(pr, &at->arg2));
     else if (at->kind == ATOM_ROOT)
         e = hl_pow(pr->pool, arg, hl_num_frac(pr->pool, 1, (ulong)at->q));
     else

@@ -9,8 +9,8 @@
 #include "alg/alg_internal.h"
 #include "base/buf.h"
 
-static int remake_atom(hl_alg *r, const alg_atom *at, const hl_alg *arg, hl_alg_ctx *ctx,
-                       hl_error *err)
+static int remake_atom(hl_alg *r, const alg_atom *at, const hl_alg *arg, const hl_alg *arg2,
+                       hl_alg_ctx *ctx, hl_error *err)
 {
     fmpq_t e;
     int status;
@@ -30,6 +30,7 @@ static int remake_atom(hl_alg *r, const alg_atom *at, const hl_alg *arg, hl_alg_
     case ATOM_ASIN: return hl_alg_apply(r, HL_ASIN, arg, ctx, err);
     case ATOM_ACOS: return hl_alg_apply(r, HL_ACOS, arg, ctx, err);
     case ATOM_PI: return hl_alg_pi(r, ctx, err);
+    case ATOM_ATAN2: return hl_alg_apply2(r, HL_ATAN2, arg, arg2, ctx, err);
     }
     return HL_OK;
 }
@@ -88,12 +89,16 @@ static int atom_image(int k, subst_state *st, hl_alg_ctx *ctx, hl_error *err)
     for (int i = 0; i < st->n; i++)
         dep |= at->dep[st->vars[i]];
     if (dep && at->kind != ATOM_PI) {
-        hl_alg arg;
+        hl_alg arg, arg2;
         hl_alg_init(&arg, ctx);
+        hl_alg_init(&arg2, ctx);
         status = subst_rec(&arg, &at->arg, st, ctx, err);
+        if (status == HL_OK && at->kind == ATOM_ATAN2)
+            status = subst_rec(&arg2, &at->arg2, st, ctx, err);
         if (status == HL_OK)
-            status = remake_atom(&st->img[at->var], at, &arg, ctx, err);
+            status = remake_atom(&st->img[at->var], at, &arg, &arg2, ctx, err);
         hl_alg_clear(&arg, ctx);
+        hl_alg_clear(&arg2, ctx);
         st->moved[at->var] = 1;
     }
     st->known[at->var] = 1;

@@ -40,7 +40,7 @@ static int eval_frac(arb_t r, const hl_alg *a, eval_state *st, hl_error *err)
 static const char *atom_fun_name(alg_atom_kind k)
 {
     static const char *const names[] = {"sqrt", "root", "sin", "cos", "exp",
-                                        "log", "atan", "asin", "acos", "pi"};
+                                        "log", "atan", "asin", "acos", "pi", "atan2"};
     return names[k];
 }
 
@@ -51,11 +51,15 @@ static int eval_atom(int k, eval_state *st, hl_error *err)
     const alg_atom *at = &st->ctx->atoms[k];
     arb_ptr y = st->atom + k;
     slong prec = st->prec;
-    arb_t x;
+    arb_t x, x2;
     arb_init(x);
+    arb_init(x2);
     int status = at->kind == ATOM_PI ? HL_OK : eval_frac(x, &at->arg, st, err);
+    if (status == HL_OK && at->kind == ATOM_ATAN2)
+        status = eval_frac(x2, &at->arg2, st, err);
     if (status != HL_OK) {
         arb_clear(x);
+        arb_clear(x2);
         return status;
     }
     switch (at->kind) {
@@ -77,8 +81,10 @@ static int eval_atom(int k, eval_state *st, hl_error *err)
     case ATOM_ASIN: arb_asin(y, x, prec); break;
     case ATOM_ACOS: arb_acos(y, x, prec); break;
     case ATOM_PI: arb_const_pi(y, prec); break;
+    case ATOM_ATAN2: arb_atan2(y, x, x2, prec); break; /* arb_atan2(r, y, x) */
     }
     arb_clear(x);
+    arb_clear(x2);
     if (!arb_is_finite(y))
         return hl_error_set(err, HL_EDOM, NULL, -1, 0, "%s evaluated outside its domain",
                             atom_fun_name(at->kind));
