@@ -112,7 +112,7 @@ static int new_reg(comp *c, int isconst)
 
 static int has_aux(int op)
 {
-    return op >= HL_OP_SINCOS && op <= HL_OP_ACOS;
+    return (op >= HL_OP_SINCOS && op <= HL_OP_ACOS) || op == HL_OP_ATAN2;
 }
 
 /* Emit op(a, b) (b = -1 if unary) unless an identical instruction exists;
@@ -532,6 +532,11 @@ static int compile_node(comp *c, const hl_expr *e, int *reg, fmpq_t s)
     case HL_FUN:
         if ((status = compile_reg(c, e->a, &a)) != HL_OK)
             break;
+        if (e->b != NULL) { /* atan2(y, x) */
+            if ((status = compile_reg(c, e->b, &b)) == HL_OK)
+                r = emit(c, HL_OP_ATAN2, a, b);
+            break;
+        }
         r = compile_fun(c, e->fun, a);
         if (r < 0)
             status = hl_error_set(c->err, HL_EUNSUP, NULL, -1, 0,
@@ -687,7 +692,7 @@ int hl_tape_nregs(const hl_tape *t) { return t->nregs; }
 static const char *const op_names[HL_OP_COUNT] = {
     "NEG", "ADD", "SUB", "MUL", "DIV", "SQR", "ADDK", "SUBK", "KSUB", "MULK", "DIVK",
     "KDIV", "POWK", "SQRT", "EXP", "LOG", "SINCOS", "SINHCOSH", "TAN", "TANH", "ATAN",
-    "ASIN", "ACOS",
+    "ASIN", "ACOS", "ATAN2",
 };
 
 const char *hl_op_name(hl_op op)

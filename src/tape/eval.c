@@ -41,6 +41,7 @@ void hl_tape_run_d(const hl_instr *code, int n, double *r)
         case HL_OP_ATAN: r[i->d] = atan(r[i->a]); break;
         case HL_OP_ASIN: r[i->d] = asin(r[i->a]); break;
         case HL_OP_ACOS: r[i->d] = acos(r[i->a]); break;
+        case HL_OP_ATAN2: r[i->d] = atan2(r[i->a], r[i->b]); break;
         }
     }
 }
@@ -73,6 +74,7 @@ void hl_tape_run_arb(const hl_instr *code, int n, arb_ptr r, slong prec)
         case HL_OP_ATAN: arb_atan(d, a, prec); break;
         case HL_OP_ASIN: arb_asin(d, a, prec); break;
         case HL_OP_ACOS: arb_acos(d, a, prec); break;
+        case HL_OP_ATAN2: arb_atan2(d, a, b, prec); break; /* arb_atan2(r, y, x) */
         }
     }
 }

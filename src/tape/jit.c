@@ -45,7 +45,7 @@ static const char *const libm_name[HL_OP_COUNT] = {
     [HL_OP_POWK] = "pow",      [HL_OP_EXP] = "exp",       [HL_OP_LOG] = "log",
     [HL_OP_SINCOS] = "sincos", [HL_OP_SINHCOSH] = "sinh", [HL_OP_TAN] = "tan",
     [HL_OP_TANH] = "tanh",     [HL_OP_ATAN] = "atan",     [HL_OP_ASIN] = "asin",
-    [HL_OP_ACOS] = "acos",
+    [HL_OP_ACOS] = "acos",     [HL_OP_ATAN2] = "atan2",
 };
 
 typedef struct jit {
@@ -88,11 +88,11 @@ static gcc_jit_function *import_lib(jit *J, int op)
 {
     if (J->lib[op] != NULL)
         return J->lib[op];
-    if (op == HL_OP_POWK) {
-        gcc_jit_param *p[2] = {gcc_jit_context_new_param(J->c, NULL, J->dbl, "x"),
-                               gcc_jit_context_new_param(J->c, NULL, J->dbl, "y")};
+    if (op == HL_OP_POWK || op == HL_OP_ATAN2) { /* pow(x, y), atan2(y, x) */
+        gcc_jit_param *p[2] = {gcc_jit_context_new_param(J->c, NULL, J->dbl, "u"),
+                               gcc_jit_context_new_param(J->c, NULL, J->dbl, "v")};
         J->lib[op] = gcc_jit_context_new_function(J->c, NULL, GCC_JIT_FUNCTION_IMPORTED, J->dbl,
-                                                  "pow", 2, p, 0);
+                                                  libm_name[op], 2, p, 0);
     } else if (op == HL_OP_SINCOS) {
         gcc_jit_param *p[3] = {gcc_jit_context_new_param(J->c, NULL, J->dbl, "x"),
                                gcc_jit_context_new_param(J->c, NULL, J->dblp, "s"),
@@ -162,7 +162,8 @@ static void emit(jit *J, const hl_instr *i)
     case HL_OP_SQR:
         v = binop(J, GCC_JIT_BINARY_OP_MULT, i->a, i->a);
         break;
-    case HL_OP_POWK: {
+    case HL_OP_POWK:
+    case HL_OP_ATAN2: {
         gcc_jit_rvalue *args[2] = {val(J, i->a), val(J, i->b)};
         v = gcc_jit_context_new_call(J->c, NULL, import_lib(J, i->op), 2, args);
         break;
@@ -929,6 +930,25 @@ static void temit(tj *T, const hl_instr *in, int i, int k)
                          INV(T, i)),
                     k));
         return;
+    case HL_OP_ATAN2: { /* x = a^2 + b^2 first, then d */
+        tconv(T, a, a, 0, k, k);
+        tconv(T, b, b, 0, k, k);
+        tset(T, x, k, tsum(T));
+        if (k == 0) {
+            gcc_jit_rvalue *args[2] = {RV(T, a, 0), RV(T, b, 0)};
+            tset(T, d, 0,
+                 gcc_jit_context_new_call(T->J.c, NULL, import_lib(&T->J, HL_OP_ATAN2), 2, args));
+            keep_inverse(T, i, RV(T, x, 0));
+            return;
+        }
+        twconv(T, a, b, 1, k, k, 1, 0);
+        gcc_jit_rvalue *g1 = tsum(T);
+        twconv(T, b, a, 1, k, k, 1, 0);
+        gcc_jit_rvalue *g2 = tsum(T);
+        twconv(T, x, d, 1, k - 1, k, -1, k);
+        tset(T, d, k, OVER_K(T, MUL_(SUB_(SUB_(g1, g2), tsum(T)), INV(T, i)), k));
+        return;
+    }
     }
 }
 

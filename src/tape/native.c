@@ -364,6 +364,28 @@ static void gen_instr(hl_buf *b, terms *ts, const hl_instr *in, int i, int k, in
         sum(b, ts);
         hl_buf_printf(b, ") * inv%d * %.17g;\n", i, rk);
         return;
+    case HL_OP_ATAN2: /* x = a^2 + b^2 first, then d */
+        hl_buf_printf(b, "0.0;\n    R[%ld] = ", R(x, k));
+        conv(ts, a, a, 0, k, k, S);
+        conv(ts, bb, bb, 0, k, k, S);
+        sum(b, ts);
+        hl_buf_printf(b, ";\n    R[%ld] = ", R(d, k));
+        if (k == 0) {
+            hl_buf_printf(b, "atan2(R[%ld], R[%ld]);\n", R(a, 0), R(bb, 0));
+            keep_inverse(b, i, "R[%ld]", R(x, 0));
+            return;
+        }
+        hl_buf_puts(b, "(");
+        wconv(ts, a, bb, 1, k, k, 1, 0, S);
+        sum(b, ts);
+        hl_buf_puts(b, " - ");
+        wconv(ts, bb, a, 1, k, k, 1, 0, S);
+        sum(b, ts);
+        hl_buf_puts(b, " - ");
+        wconv(ts, x, d, 1, k - 1, k, -1, k, S);
+        sum(b, ts);
+        hl_buf_printf(b, ") * inv%d * %.17g;\n", i, rk);
+        return;
     }
     sum(b, ts);
     hl_buf_puts(b, ";\n");

@@ -213,6 +213,17 @@ static void step_d(const hl_tape *t, int k)
                 d[k] = ((i->op == HL_OP_ACOS ? -dk : dk) * a[k] - s) / (dk * x[0]);
             }
             break;
+        case HL_OP_ATAN2:
+            x[k] = conv(a, a, 0, k, k) + conv(b, b, 0, k, k);
+            if (k == 0) {
+                d[0] = atan2(a[0], b[0]);
+            } else {
+                s = dconv(a, b, k) - dconv(b, a, k); /* (b a' - a b')[k-1] */
+                for (int j = 1; j < k; j++)
+                    s -= (k - j) * x[j] * d[k - j];
+                d[k] = s / (dk * x[0]);
+            }
+            break;
         }
     }
 }

@@ -213,6 +213,21 @@ static void step_arb(hl_tape *t, int k, slong prec)
                 arb_div(d + k, s, c, prec);
             }
             break;
+        case HL_OP_ATAN2:
+            conv(s, NULL, 0, a, a, 0, k, k, prec);
+            conv(x + k, s, 0, b, b, 0, k, k, prec); /* (a*a)[k] + (b*b)[k] */
+            if (k == 0) {
+                arb_atan2(d, a, b, prec);
+            } else {
+                wconv(s, a, b, 1, k, k, 1, 0, u, prec); /* sum j a[j] b[k-j] */
+                wconv(c, b, a, 1, k, k, 1, 0, u, prec);
+                arb_sub(s, s, c, prec);
+                wconv(c, x, d, 1, k - 1, k, -1, k, u, prec); /* sum (k-j) x[j] d[k-j] */
+                arb_sub(s, s, c, prec);
+                arb_mul_si(c, x, k, prec);
+                arb_div(d + k, s, c, prec);
+            }
+            break;
         }
     }
 #undef R

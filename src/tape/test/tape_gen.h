@@ -30,6 +30,7 @@ static double ref(const hl_expr *e, const double *v)
     case HL_FUN: {
         double a = ref(e->a, v);
         switch (e->fun) {
+        case HL_ATAN2: return atan2(a, ref(e->b, v));
         case HL_SIN: return sin(a);
         case HL_COS: return cos(a);
         case HL_TAN: return tan(a);
@@ -73,7 +74,7 @@ static const hl_expr *gen(hl_pool *P, int depth)
     const hl_expr *sa = hl_call(P, HL_SIN, a);              /* in [-1, 1] */
     const hl_expr *half = hl_div(P, sa, two);
     const hl_expr *pi = hl_pi(P);
-    switch (rnd(26)) {
+    switch (rnd(27)) {
     case 0: return hl_add(P, a, b);
     case 1: return hl_sub(P, a, b);
     case 2: return hl_mul(P, a, b);
@@ -99,6 +100,7 @@ static const hl_expr *gen(hl_pool *P, int depth)
     case 22: return hl_sub(P, pi, a);                   /* KSUB */
     case 23: return hl_sub(P, a, pi);                   /* SUBK */
     case 24: return hl_div(P, pi, pos);                 /* KDIV */
+    case 25: return hl_call2(P, HL_ATAN2, a, b);         /* any quadrant */
     default: return hl_sub(P, hl_num_si(P, 2), hl_div(P, hl_num_si(P, 3), pos)); /* KSUB, KDIV */
     }
 }
