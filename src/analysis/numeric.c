@@ -455,6 +455,38 @@ static int eval_fun(ev *E, dn *x, hl_fun f, const dn *a)
     return st;
 }
 
+/* x = atan2(y, x) of e's operands: x' = (b a' - a b')/(a^2 + b^2) with
+ * a = y, b = x, integrated as b/s along a minus a/s along b. */
+static int eval_atan2(ev *E, dn *x, const hl_expr *e)
+{
+    int L = E->L, st;
+    dn *a = hl_xmalloc((size_t)6 * L * sizeof *a), *b = a + L, *s = b + L, *u = s + L,
+       *v = u + L, *t = v + L, *p;
+    if ((st = eval(E, e->a, &p)) == HL_OK) {
+        memcpy(a, p, (size_t)L * sizeof *a);
+        st = eval(E, e->b, &p);
+    }
+    if (st == HL_OK) {
+        memcpy(b, p, (size_t)L * sizeof *b);
+        s_mul(s, a, a, L);
+        s_mul(t, b, b, L);
+        for (int k = 0; k < L; k++)
+            s[k] = dadd(s[k], t[k]);
+        if ((st = s_div(E, u, b, s)) == HL_OK)
+            st = s_div(E, v, a, s);
+    }
+    if (st == HL_OK) {
+        double r2 = s[0].r;
+        dn x0 = {atan2(a[0].r, b[0].r), (b[0].r * a[0].e - a[0].r * b[0].e) / r2};
+        s_integrate(x, a, u, x0, L);
+        s_integrate(t, b, v, (dn){0, 0}, L);
+        for (int k = 0; k < L; k++)
+            x[k] = dsub(x[k], t[k]);
+    }
+    free(a);
+    return st;
+}
+
 /* *out points into the arena (valid until the next memo_add: copy first). */
 static int eval(ev *E, const hl_expr *e, dn **out)
 {
@@ -474,6 +506,10 @@ static int eval(ev *E, const hl_expr *e, dn **out)
     case HL_PI: x[0].r = M_PI; break;
     case HL_SYM: st = eval_sym(E, x, e->name); break;
     case HL_NEG: case HL_FUN:
+        if (e->b != NULL) { /* atan2(y, x) */
+            st = eval_atan2(E, x, e);
+            break;
+        }
         if ((st = eval(E, e->a, &p)) != HL_OK)
             break;
         a = hl_xmalloc((size_t)L * sizeof *a);

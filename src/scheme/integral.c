@@ -131,6 +131,8 @@ static int walk(entire_walk *w, const hl_expr *e);
 static int walk_fun(entire_walk *w, const hl_expr *e)
 {
     int r = walk(w, e->a);
+    if (e->b != NULL) /* atan2: not entire; fine where s is in neither argument */
+        return free_of_s(r) && free_of_s(walk(w, e->b)) ? FREE : REFUSED;
     if (free_of_s(r))
         return FREE;
     int entire = e->fun == HL_SIN || e->fun == HL_COS || e->fun == HL_EXP || e->fun == HL_SINH ||

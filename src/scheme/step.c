@@ -186,8 +186,8 @@ static int divides_by_unknown(const hl_expr *e, const hl_scheme *s, hl_memo *see
         r = divides_by_unknown(e->a, s, seen) || divides_by_unknown(e->b, s, seen);
         break;
     case HL_NEG:
-    case HL_FUN:
-        r = divides_by_unknown(e->a, s, seen);
+    case HL_FUN: /* atan2(y, x) divides by nothing, but its arguments may */
+        r = divides_by_unknown(e->a, s, seen) || (e->b && divides_by_unknown(e->b, s, seen));
         break;
     default:
         break;

@@ -7,7 +7,8 @@
  *   (exp: g = f; sin/cos: g = cos/-sin, computed together; tan: g = 1 + f^2);
  *   u^e (e rational):  f_k = 1/(k u_0) sum_{j=1..k} ((e+1) j - k) u_j f_{k-j};
  *   log, atan, asin, acos:  f = F(u_0) + integral of u'/R, R = u, 1 + u^2,
- *   sqrt(1 - u^2), by series division.
+ *   sqrt(1 - u^2), by series division;
+ *   atan2(y, x):  f = atan2(y_0, x_0) + integral of (x y' - y x')/(x^2 + y^2).
  * Only F(u_0) goes through the algebra layer (hl_alg_apply); the rest is
  * exact arithmetic on the coefficients.
  *
@@ -189,7 +190,8 @@ static int fold(series_prog *p, int *out, const hl_expr *x, int a, int b, hl_alg
         status = hl_alg_pow(r, ca, cb, ctx, err);
         break;
     case HL_FUN:
-        status = hl_alg_apply(r, x->fun, ca, ctx, err);
+        status = x->b != NULL ? hl_alg_apply2(r, x->fun, ca, cb, ctx, err)
+                              : hl_alg_apply(r, x->fun, ca, ctx, err);
         break;
     case HL_SYM:
         break; /* not reached */
@@ -271,6 +273,17 @@ static int fun_node(series_prog *p, hl_fun f, int a, hl_alg_ctx *ctx)
     return i;
 }
 
+/* atan2(y, x) of the nodes a = y, b = x: aux[0] = x^2 + y^2, aux[2] = the
+ * derivative's series (step_atan2). */
+static int atan2_node(series_prog *p, int a, int b, hl_alg_ctx *ctx)
+{
+    int i = new_node(p, OP_FUN, a, b, ctx);
+    p->node[i].fun = HL_ATAN2;
+    for (int j = 0; j < 3; j++)
+        hl_series_zero(&p->node[i].aux[j], p->n, ctx);
+    return i;
+}
+
 /* The node for x^b, b's node known. */
 static int pow_node(series_prog *p, int a, int b, hl_alg_ctx *ctx)
 {
@@ -294,8 +307,9 @@ static int pow_node(series_prog *p, int a, int b, hl_alg_ctx *ctx)
 static int children(const hl_expr *e)
 {
     switch (e->kind) {
-    case HL_NEG:
     case HL_FUN:
+        return e->b != NULL ? 2 : 1; /* atan2(y, x): two */
+    case HL_NEG:
         return 1;
     case HL_ADD:
     case HL_SUB:
@@ -345,7 +359,7 @@ static int emit(series_prog *p, int *out, const hl_expr *x, int a, int b, int ns
         *out = pow_node(p, a, b, ctx);
         break;
     case HL_FUN:
-        *out = fun_node(p, x->fun, a, ctx);
+        *out = x->b != NULL ? atan2_node(p, a, b, ctx) : fun_node(p, x->fun, a, ctx);
         break;
     default:
         break; /* leaves handled above */
@@ -647,6 +661,46 @@ static int step_inverse(tnode *t, const hl_series *u, int k, hl_alg_ctx *ctx, hl
     return HL_OK;
 }
 
+/* atan2(y, x): v' = g = h/R with h = x y' - y x', R = x^2 + y^2 (aux[0]);
+ * g_{k-1} = (h_{k-1} - sum_{j=1..k-1} R_j g_{k-1-j}) / R_0 (aux[2]),
+ * h_{k-1} = sum_{j=1..k} j (y_j x_{k-j} - x_j y_{k-j}); v_k = g_{k-1}/k. */
+static int step_atan2(tnode *t, const hl_series *y, const hl_series *x, int k, hl_alg_ctx *ctx,
+                      hl_error *err)
+{
+    hl_series *R = &t->aux[0], *g = &t->aux[2];
+    hl_alg s, u;
+    hl_alg_init(&s, ctx);
+    hl_alg_init(&u, ctx);
+    cauchy(&s, x, x, k, 0, ctx);
+    cauchy(&u, y, y, k, 0, ctx);
+    hl_alg_add(&R->c[k], &s, &u, ctx);
+    int status = HL_OK;
+    if (k == 0) {
+        status = hl_alg_apply2(&t->v.c[0], HL_ATAN2, &y->c[0], &x->c[0], ctx, err);
+        if (status == HL_OK)
+            status = inverse_of(&t->inv, &R->c[0], "atan2", ctx, err);
+    } else {
+        fmpq_t c;
+        fmpq_init(c);
+        conv_deriv(&s, y, x, k, ctx); /* h_{k-1} / k */
+        conv_deriv(&u, x, y, k, ctx);
+        hl_alg_sub(&s, &s, &u, ctx);
+        fmpq_set_si(c, k, 1);
+        hl_alg_scalar_mul_fmpq(&s, &s, c, ctx);
+        for (int j = 1; j <= k - 1; j++) {
+            hl_alg_mul(&u, &R->c[j], &g->c[k - 1 - j], ctx);
+            hl_alg_sub(&s, &s, &u, ctx);
+        }
+        hl_alg_mul(&g->c[k - 1], &s, &t->inv, ctx);
+        fmpq_set_si(c, 1, (ulong)k);
+        hl_alg_scalar_mul_fmpq(&t->v.c[k], &g->c[k - 1], c, ctx);
+        fmpq_clear(c);
+    }
+    hl_alg_clear(&s, ctx);
+    hl_alg_clear(&u, ctx);
+    return status;
+}
+
 static int step_node(series_prog *p, int i, int k, const hl_series *inputs, hl_alg_ctx *ctx,
                      hl_error *err)
 {
@@ -703,6 +757,8 @@ static int step_node(series_prog *p, int i, int k, const hl_series *inputs, hl_a
         case HL_ASIN:
         case HL_ACOS:
             return step_inverse(t, &A->v, k, ctx, err);
+        case HL_ATAN2:
+            return step_atan2(t, &A->v, &B->v, k, ctx, err);
         default:
             break;
         }
@@ -770,8 +826,8 @@ static int apply_node(hl_series *r, const hl_series *a, int op, hl_fun f, const 
 
 int hl_series_apply(hl_series *r, hl_fun f, const hl_series *a, hl_alg_ctx *ctx, hl_error *err)
 {
-    if ((unsigned)f >= HL_FUN_COUNT)
-        return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "unknown function");
+    if ((unsigned)f >= HL_FUN_COUNT || hl_fun_arity(f) != 1)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "unknown function of one argument");
     return apply_node(r, a, OP_FUN, f, NULL, ctx, err);
 }
 
