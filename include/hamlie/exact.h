@@ -50,8 +50,9 @@ typedef struct hl_exact_aa {
 int hl_exact_aa_read(hl_exact_aa *aa, hl_system *sys, const char *spec, hl_error *err);
 
 /* *ok = 0 and why = the first failing condition of: {theta, I} = 1;
- * {I, H} = 0; {theta, H} = nu(I); q, p the inverse (numerically at points
- * with p > 0, the branch of an atan angle). */
+ * {I, H} = 0; {theta, H} = nu(I); q, p the inverse (numerically at points in
+ * all four quadrants and on the axes: an angle atan(q/p) fails for p < 0,
+ * atan2(q, p) holds everywhere). */
 int hl_exact_aa_verify(int *ok, char *why, size_t whylen, const hl_exact_aa *aa,
                        hl_system *sys, hl_error *err);
 

@@ -48,7 +48,9 @@ const char cmd_exact_help[] =
     "                       as an action-angle map and against the closed form\n"
     "  --action-angle MAP   'theta = ...; I = ...; q = ...; p = ...; nu = ...'\n"
     "                       (1 dof): verified ({theta,I} = 1, {I,H} = 0,\n"
-    "                       {theta,H} = nu(I), q,p the inverse at points p > 0),\n"
+    "                       {theta,H} = nu(I), q,p the inverse at points in all\n"
+    "                       four quadrants: write the angle atan2(q, p), not\n"
+    "                       atan(q/p), which is the angle for p > 0 only),\n"
     "                       then the scheme Q = q(theta + nu D, I), P = p(...)\n"
     "  --init q=..,p=..     1 dof, H not quadratic: the numeric exact scheme by\n"
     "                       the orbit (period T, frequency 2 pi/T) and 8 steps\n"
@@ -240,17 +242,20 @@ static void put_images(hl_buf *out, const hl_alg *img, hl_system *sys, const cli
     }
 }
 
-/* Q, P of a map against the closed form at sample points (p > 0). */
+/* Q, P of a map against the closed form at sample points in every
+ * quadrant and on the axes. */
 static int agree_with_closed(int *ok, double *maxd, const hl_alg *img, hl_system *sys,
                              hl_error *err)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     hl_alg *cf = hl_alg_vec_new(2, ctx);
     int st = hl_scheme_linear_flow(cf, sys, err);
-    static const double pts[][3] = {{0.3, 0.8, 0.5}, {-1.2, 0.4, 2.0}, {0.7, 2.0, -3.1}};
+    static const double pts[][3] = {{0.3, 0.8, 0.5},  {-1.2, 0.4, 2.0}, {0.7, 2.0, -3.1},
+                                    {-0.6, -0.9, 1.3}, {0.5, -0.3, -0.7}, {-0.8, 0, 0.9},
+                                    {0, -0.7, 2.5}};
     *ok = st == HL_OK;
     *maxd = 0;
-    for (int i = 0; i < 3 && *ok; i++)
+    for (int i = 0; i < (int)(sizeof pts / sizeof *pts) && *ok; i++)
         for (int v = 0; v < 2; v++) {
             double a = eval_at(&img[v], sys, pts[i][0], pts[i][1], pts[i][2], err);
             double b = eval_at(&cf[v], sys, pts[i][0], pts[i][1], pts[i][2], err);
@@ -281,7 +286,8 @@ static int run_aa(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_
         return HL_OK;
     }
     hl_buf_puts(out, "action-angle map verified: {theta, I} = 1, {I, H} = 0, "
-                     "{theta, H} = nu(I), q and p the inverse (at points with p > 0)\n");
+                     "{theta, H} = nu(I), q and p the inverse (at points in all four "
+                     "quadrants)\n");
     hl_alg *img = hl_alg_vec_new(2, hl_system_ctx(sys));
     st = hl_exact_aa_scheme(img, &aa, sys, err);
     if (st == HL_OK) {
@@ -544,9 +550,13 @@ static int run_steps(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, 
                      : F("eps*(%s/2*sqrt(2*m*I - m*k*%s^2) + I*sqrt(m/k)*atan(%s*sqrt(m*k)/"
                          "sqrt(2*m*I - m*k*%s^2)))", q, q, q, q),
                 sys, o);
-    hl_buf_puts(out, "step 4: the angle theta = dK/dI (in units of time)\n");
-    put_formula(out, "theta", unit ? F("atan(%s/%s)", q, p) : F("sqrt(m/k)*atan(sqrt(m*k)*%s/%s)", q, p),
-                sys, o);
+    /* dK/dI = atan(q/p) on either branch of p; atan2 joins the branches
+     * across p = 0 (it differs from atan by a constant, pi, where p < 0) */
+    hl_buf_puts(out, "step 4: the angle theta = dK/dI (in units of time; atan2 continues it "
+                     "across p = 0)\n");
+    put_formula(out, "theta",
+                unit ? F("atan2(%s, %s)", q, p) : F("sqrt(m/k)*atan2(sqrt(m*k)*%s, %s)", q, p), sys,
+                o);
     hl_buf_puts(out, "step 5: the inverse\n");
     put_formula(out, q, unit ? "sqrt(2*I)*sin(theta)" : "sqrt(2*I/k)*sin(sqrt(k/m)*theta)", sys, o);
     put_formula(out, p, unit ? "sqrt(2*I)*cos(theta)" : "sqrt(2*m*I)*cos(sqrt(k/m)*theta)", sys, o);
@@ -559,7 +569,7 @@ static int run_steps(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, 
     char *Ks = hl_xstrdup(F("eps*(%s/2*sqrt(2*%s*I - %s*%s*%s^2) + I*sqrt(%s/%s)*"
                       "atan(%s*sqrt(%s*%s)/sqrt(2*%s*I - %s*%s*%s^2)))",
                       q, m, m, k, q, m, k, q, m, k, m, m, k, q));
-    char *th = hl_xstrdup(F("sqrt(%s/%s)*atan(sqrt(%s*%s)*%s/%s)", m, k, m, k, q, p));
+    char *th = hl_xstrdup(F("sqrt(%s/%s)*atan2(sqrt(%s*%s)*%s, %s)", m, k, m, k, q, p));
     char *rq = hl_xstrdup(F("sqrt(2*I/%s)*sin(sqrt(%s/%s)*theta)", k, k, m));
     char *rp = hl_xstrdup(F("sqrt(2*%s*I)*cos(sqrt(%s/%s)*theta)", m, k, m));
     hl_buf_clear(&f);

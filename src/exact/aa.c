@@ -6,10 +6,12 @@
  *   2. {I, H} = 0                        (I an integral)
  *   3. {theta, H} = nu(I(q,p))           (the frequency a function of I alone)
  *   4. q(theta(q,p), I(q,p)) = q, same for p  (the inverse)
- * 1-3 are exact (derivatives of the angle's atan/acos are algebraic).  4 is
- * checked numerically at sample points with p > 0, because an angle given by
- * atan(q/p) is only an inverse on one branch (sqrt(q^2+p^2) sin(atan(q/p))
- * is q sign(p)); the report says so. */
+ * 1-3 are exact (derivatives of the angle's atan/atan2/acos are algebraic).
+ * 4 is checked numerically at sample points in all four quadrants and on
+ * the axes (turning points p = 0, and q = 0 with p < 0, the cut of
+ * atan2(q, p)): 1-3 are local, blind to the branch of the angle, and an
+ * angle given by atan(q/p) is an inverse for p > 0 only (sqrt(q^2+p^2)
+ * sin(atan(q/p)) is q sign(p)); atan2(q, p) is the angle everywhere. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -121,9 +123,13 @@ int hl_exact_aa_verify(int *ok, char *why, size_t whylen, const hl_exact_aa *aa,
             }
         }
     }
-    /* 4: the inverse, numerically at points with p > 0; symbolic parameters
-     * take the values 1.3, 1.47, 1.64, ... (positive: masses, stiffnesses) */
-    static const double pts[][2] = {{0.3, 0.8}, {-0.7, 0.4}, {1.1, 1.3}, {0.05, 0.6}};
+    /* 4: the inverse, numerically at points in every quadrant and on the
+     * axes; symbolic parameters take the values 1.3, 1.47, 1.64, ...
+     * (positive: masses, stiffnesses) */
+    static const double pts[][2] = {{0.3, 0.8},  {-0.7, 0.4}, {1.1, 1.3}, {0.05, 0.6},
+                                    {-0.6, -0.9}, {0.5, -0.3}, {0.8, 0},  {-0.6, 0},
+                                    {0, -0.7}};
+    const int npts = (int)(sizeof pts / sizeof *pts);
     int np = hl_system_nparams(sys) < 14 ? hl_system_nparams(sys) : 14;
     const char *names[16] = {hl_system_coord(sys, 0), hl_system_momentum(sys, 0)};
     double pv[16];
@@ -133,7 +139,7 @@ int hl_exact_aa_verify(int *ok, char *why, size_t whylen, const hl_exact_aa *aa,
     }
     const hl_expr *inv[2] = {in_qp(pool, aa->q, aa->theta, aa->I),
                              in_qp(pool, aa->p, aa->theta, aa->I)};
-    for (int i = 0; st == HL_OK && *ok && i < 4; i++)
+    for (int i = 0; st == HL_OK && *ok && i < npts; i++)
         for (int v = 0; v < 2 && *ok; v++) {
             double val = NAN, *vals = pv;
             vals[0] = pts[i][0];

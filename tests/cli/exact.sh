@@ -51,7 +51,7 @@ assert e["exact"] and e["quadratic_only"] and e["symplectic"] and not e["implici
 
 # issue 6: the seven steps of §3 for the oscillator end in the rotation
 run 0 exact -H '(p^2+x^2)/2' --steps
-has_line '  theta = atan(x/p)'
+has_line '  theta = atan2(x, p)'
 has_line '  x = sqrt(2*I)*sin(theta)'
 has_line '  X = x*cos(D) + p*sin(D)'
 has_line 'check the action-angle map: yes'
@@ -74,9 +74,9 @@ run 2 exact -H 'p^2/2 + q*p' --steps
 err_has "--steps carries out"
 
 # a user's action-angle map: verified, or rejected naming the condition (exit 1)
-AA='theta = atan(x/p); I = (x^2+p^2)/2; x = sqrt(2*I)*sin(theta); p = sqrt(2*I)*cos(theta)'
+AA='theta = atan2(x, p); I = (x^2+p^2)/2; x = sqrt(2*I)*sin(theta); p = sqrt(2*I)*cos(theta)'
 run 0 exact -H '(p^2+x^2)/2' --action-angle "$AA; nu = 1"
-has_line '  X = sqrt(x^2 + p^2)*sin(atan(x/p) + D)'
+has_line '  X = sqrt(x^2 + p^2)*sin(atan2(x, p) + D)'
 run 1 exact -H '(p^2+x^2)/2' --action-angle "$AA; nu = 2"
 has_line 'action-angle map rejected: {theta, H} = nu(I) fails: the angle does not advance at the frequency nu(I)'
 run 1 exact -H '(p^2+x^2)/2' --action-angle 'theta = x; I = p; x = theta; p = I; nu = 1'

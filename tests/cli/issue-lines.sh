@@ -61,7 +61,7 @@ has_line '  X = x*cos(D) + p*sin(D)'
 run 0 exact -H '(px^2+py^2)/2+(x^2+4*y^2)/2'
 run 0 exact -H "$PEND" --init q=1.3,p=0
 has_text 'period T = 7.01925031184'
-run 0 exact -H "$OSC" --action-angle 'theta = atan(x/p); I = (p^2+x^2)/2; x = sqrt(2*I)*sin(theta); p = sqrt(2*I)*cos(theta); nu = 1'
+run 0 exact -H "$OSC" --action-angle 'theta = atan2(x, p); I = (p^2+x^2)/2; x = sqrt(2*I)*sin(theta); p = sqrt(2*I)*cos(theta); nu = 1'
 run 0 run -H "$PEND" --scheme exact --dt 0.5 --t 1000 --init q=1.3,p=0 --json
 python3 -c 'import json, sys; d = json.load(open(sys.argv[1]))
 assert d["max_error"] < 1e-12 and d["max_abs_dH"] < 1e-14, d' "$tmp/out" && ok ||

@@ -1,8 +1,9 @@
 /* A user's action-angle map, verified:
- *   the oscillator's map (theta = atan(x/p), I = (x^2+p^2)/2, x = sqrt(2I)
+ *   the oscillator's map (theta = atan2(x, p), I = (x^2+p^2)/2, x = sqrt(2I)
  *     sin theta, p = sqrt(2I) cos theta, nu = 1) passes, and its scheme
- *     equals x cos D + p sin D, p cos D - x sin D at points with p > 0
- *     (evaluated, against the rotation by hand);
+ *     equals x cos D + p sin D, p cos D - x sin D at points in all four
+ *     quadrants and on the axes (evaluated, against the rotation by hand);
+ *   the paper's angle atan(x/p), an inverse for p > 0 only, is rejected;
  *   the oscillator with frequency 2 (H = (p^2 + 4x^2)/2) with its map;
  *   wrong maps rejected with the failing condition named: I scaled
  *     ({theta, I} = 1), I not an integral, a wrong nu, a wrong inverse;
@@ -49,13 +50,15 @@ static void test_scheme(void)
     hl_exact_aa aa;
     hl_error err;
     CHECK(hl_exact_aa_read(&aa, s,
-                           "theta = atan(x/p); I = (x^2+p^2)/2; x = sqrt(2*I)*sin(theta); "
+                           "theta = atan2(x, p); I = (x^2+p^2)/2; x = sqrt(2*I)*sin(theta); "
                            "p = sqrt(2*I)*cos(theta); nu = 1",
                            &err) == HL_OK);
     hl_alg *im = hl_alg_vec_new(2, ctx);
     CHECK_MSG(hl_exact_aa_scheme(im, &aa, s, &err) == HL_OK, "%s", err.msg);
-    static const double pts[][3] = {{0.3, 0.8, 0.5}, {-1.2, 0.4, 2.0}, {0.7, 2.0, -3.1}};
-    for (int i = 0; i < 3; i++) {
+    static const double pts[][3] = {{0.3, 0.8, 0.5},   {-1.2, 0.4, 2.0}, {0.7, 2.0, -3.1},
+                                    {-0.6, -0.9, 1.3}, {0.5, -0.3, -0.7}, {-0.8, 0, 0.9},
+                                    {0.8, 0, -2.2},    {0, -0.7, 2.5},   {0, 0.4, 0.3}};
+    for (int i = 0; i < (int)(sizeof pts / sizeof *pts); i++) {
         double x = pts[i][0], p = pts[i][1], D = pts[i][2];
         arb_ptr v = _arb_vec_init(hl_alg_ctx_nbase(ctx));
         arb_set_d(v + hl_system_var_q(s, 0), x);
@@ -80,11 +83,16 @@ int main(void)
 {
     const char *osc = "(p^2+x^2)/2";
     verify(osc,
-           "theta = atan(x/p); I = (x^2+p^2)/2; x = sqrt(2*I)*sin(theta); "
+           "theta = atan2(x, p); I = (x^2+p^2)/2; x = sqrt(2*I)*sin(theta); "
            "p = sqrt(2*I)*cos(theta); nu = 1",
            NULL);
+    /* the paper's angle: right for p > 0, x sign(p) for p < 0 */
+    verify(osc,
+           "theta = atan(x/p); I = (x^2+p^2)/2; x = sqrt(2*I)*sin(theta); "
+           "p = sqrt(2*I)*cos(theta); nu = 1",
+           "the inverse fails");
     verify("(p^2+4*x^2)/2",
-           "theta = atan(2*x/p); I = (p^2+4*x^2)/4; x = sqrt(I)*sin(theta); "
+           "theta = atan2(2*x, p); I = (p^2+4*x^2)/4; x = sqrt(I)*sin(theta); "
            "p = 2*sqrt(I)*cos(theta); nu = 2",
            NULL);
     verify(osc,
