@@ -327,8 +327,49 @@ static int sin_twelfths(hl_alg *r, long k, hl_alg_ctx *ctx, hl_error *err)
     return status;
 }
 
+/* If a = s atan2(y, x) (s = +-1, the atom alone), its atom; else NULL. */
+static const alg_atom *signed_atan2(int *s, const hl_alg *a, const hl_alg_ctx *ctx)
+{
+    const fmpz_mpoly_ctx_struct *mc = ctx->mctx;
+    if (a->num->length != 1 || !fmpz_mpoly_is_one(a->den, mc) ||
+        fmpz_mpoly_total_degree_si(a->num, mc) != 1 || !fmpz_is_pm1(a->num->coeffs))
+        return NULL;
+    for (int k = 0; k < ctx->natoms; k++)
+        if (ctx->atoms[k].kind == ATOM_ATAN2 &&
+            fmpz_mpoly_degree_si(a->num, ctx->atoms[k].var, mc) == 1) {
+            *s = fmpz_sgn(a->num->coeffs);
+            return &ctx->atoms[k];
+        }
+    return NULL;
+}
+
+/* sin and cos of s atan2(y, x): s y/r and x/r, r = sqrt(x^2 + y^2). */
+static int sincos_atan2(hl_alg *r, int want_cos, int s, const alg_atom *at, hl_alg_ctx *ctx,
+                        hl_error *err)
+{
+    hl_alg rad, t;
+    hl_alg_init(&rad, ctx);
+    hl_alg_init(&t, ctx);
+    hl_alg_mul(&rad, &at->arg, &at->arg, ctx);
+    hl_alg_mul(&t, &at->arg2, &at->arg2, ctx);
+    hl_alg_add(&rad, &rad, &t, ctx);
+    hl_alg_set(&t, want_cos ? &at->arg2 : &at->arg, ctx);
+    int status = alg_sqrt(&rad, &rad, ctx, err);
+    if (status == HL_OK)
+        status = hl_alg_div(r, &t, &rad, ctx, err);
+    if (status == HL_OK && s < 0 && !want_cos)
+        hl_alg_neg(r, r, ctx);
+    hl_alg_clear(&rad, ctx);
+    hl_alg_clear(&t, ctx);
+    return status;
+}
+
 static int alg_sincos(hl_alg *r, int want_cos, const hl_alg *a, hl_alg_ctx *ctx, hl_error *err)
 {
+    int s;
+    const alg_atom *at = signed_atan2(&s, a, ctx);
+    if (at != NULL)
+        return sincos_atan2(r, want_cos, s, at, ctx, err);
     if (fmpz_mpoly_is_zero(a->num, ctx->mctx)) {
         hl_alg_set_si(r, want_cos, ctx);
         return HL_OK;

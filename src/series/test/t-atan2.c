@@ -3,7 +3,8 @@
  *   exact values where x is a number: atan2(3, -4) = pi - atan(3/4),
  *     atan2(-3, -4) = atan(3/4) - pi, atan2(0, -2) = pi, atan2(+-3, 0) =
  *     +-pi/2, atan2(y, 2) = atan(y/2); atan2(0, 0) refused (HL_EDOM);
- *   odd in y: atan2(-y, x) = -atan2(y, x), one atom;
+ *   odd in y: atan2(-y, x) = -atan2(y, x), one atom; sin, cos and tan of
+ *     atan2(y, x) are y/r, x/r, y/x (r = sqrt(x^2 + y^2));
  *   the derivative rule against the closed forms x/(x^2+y^2), -y/(x^2+y^2),
  *     also through a composite argument;
  *   substitution remakes the atom from both arguments (y -> 0, x -> -2: pi);
@@ -43,6 +44,15 @@ static void exact_values(void)
     same("atan2(y, 2)", "atan(y/2)");
     same("atan2(-y, x)", "-atan2(y, x)");
     same("atan2(x - y, -x)", "-atan2(y - x, -x)");
+    /* sin, cos, tan of the angle: the point's coordinates over its radius,
+     * in the canonical form (no numeric zero test) */
+    hl_alg_ctx_reset_numeric_used(ctx);
+    same("sin(atan2(y, x))", "y/sqrt(x^2 + y^2)");
+    same("cos(atan2(y, x))", "x/sqrt(x^2 + y^2)");
+    same("sin(atan2(-y, x))", "-y/sqrt(x^2 + y^2)");
+    same("cos(-atan2(y, x))", "x/sqrt(x^2 + y^2)");
+    same("tan(atan2(y, x - 1))", "y/(x - 1)");
+    CHECK_MSG(!hl_alg_ctx_numeric_used(ctx), "sin(atan2(y, x)) needed the numeric test");
     const hl_expr *e;
     hl_alg r;
     hl_error err;
