@@ -7,18 +7,19 @@
  * them and sums the polynomial.  Order and step follow Jorba & Zou,
  * Experiment. Math. 14 (2005) 99-117:
  *
- *   p = ceil(-ln(tol) / 2) + 1,           tol = min(atol, rtol)
+ *   p = ceil(-ln(tol) / 2) + 1 (at least 6), tol = min(atol, rtol)
  *   eps = max(atol, rtol * |z|_inf)       (absolute + relative)
  *   h = min_{k = p-1, p} (eps / |z^[k]|_inf)^(1/k) * exp(-0.7 / (p - 1))
  *
  * made safe where orders of the series vanish by symmetry (at q = 0 in
  * the well q^4/4 the last two can both be 0): the orders p-5..p-2 also
- * bound the step, |z^[k]| h^k <= eps e^(3 (p-1-k)), which leaves an
- * ordinary orbit's step as it is; and when all of the last six orders are
- * 0 the step is checked by its defect |P'(h) - f(P(h))| (P the step's
- * polynomial) and shortened until the tail it implies is under eps.  The
- * equilibrium, all of whose orders past 0 vanish, stays put in one step.
- * (src/flow/flow_impl.h says why.)
+ * bound the step, |z^[k]| h^k <= eps e^(3.5 (p-1-k)), which leaves an
+ * ordinary orbit's step as it is; where they shorten it, or all of the
+ * last six orders are 0, the step is checked by its defect
+ * |P'(h) - f(P(h))| (P the step's polynomial) and shortened until the
+ * tail it implies is under eps.  The equilibrium, all of whose orders past
+ * 0 vanish, stays put in one step.  (src/flow/flow_impl.h says why, and
+ * what it cannot see.)
  *
  * Dense output: the polynomial of a step is valid over the whole step, so
  * outputs at given times are evaluated on it, without shortening steps (only

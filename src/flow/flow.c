@@ -15,7 +15,6 @@ struct hl_flow {
     double ln_atol, ln_rtol;
     double *coef; /* n * (p+1) Taylor coefficients of the current step */
     double *zt;   /* n: state at an output time */
-    double *norm; /* p+1: the coefficient norms the step reads */
     double *dz, *fz; /* n each: P'(h) and f(P(h)), to check a step */
     double eps;      /* the current step's tolerance */
     int check;       /* the current step is to be checked (hl_flow_shrink) */
@@ -54,7 +53,6 @@ int hl_flow_new(hl_flow **out, hl_tape *f, double atol, double rtol, hl_error *e
     fl->p = hl_flow_order_for(log(fmax(fmin(atol, rtol), HL_FLOW_MIN_RTOL)));
     fl->coef = hl_xcalloc((size_t)n * (fl->p + 1), sizeof *fl->coef);
     fl->zt = hl_xcalloc((size_t)n, sizeof *fl->zt);
-    fl->norm = hl_xcalloc((size_t)fl->p + 1, sizeof *fl->norm);
     fl->dz = hl_xcalloc((size_t)n, sizeof *fl->dz);
     fl->fz = hl_xcalloc((size_t)n, sizeof *fl->fz);
     fl->native_end = NAN;
@@ -68,7 +66,6 @@ void hl_flow_free(hl_flow *fl)
         return;
     free(fl->coef);
     free(fl->zt);
-    free(fl->norm);
     free(fl->dz);
     free(fl->fz);
     free(fl);
@@ -168,36 +165,35 @@ static int step_size(double *h, hl_flow *fl, const double *z, double t, hl_error
     int st = hl_tape_taylor_ode_d(c, p, fl->f, err);
     if (st != HL_OK)
         return st;
-    const int lo = hl_flow_window_lo(p);
-    double n0 = 0, sum = 0, *norm = fl->norm;
-    for (int k = lo; k <= p; k++)
-        norm[k] = 0;
+    enum { W = HL_FLOW_WINDOW };
+    double n0 = 0, sum = 0, win[W] = {0}; /* the norms of the orders p-W+1..p */
     for (int i = 0; i < n; i++) {
-        const double *ci = c + (size_t)i * S;
+        const double *ci = c + (size_t)i * S, *cw = ci + p - W + 1;
         double a0 = fabs(ci[0]);
         n0 = a0 > n0 ? a0 : n0;
-        for (int k = lo; k <= p; k++) {
-            double a = fabs(ci[k]);
-            norm[k] = a > norm[k] ? a : norm[k];
+        for (int j = 0; j < W; j++) {
+            double a = fabs(cw[j]);
+            win[j] = a > win[j] ? a : win[j];
             sum += a; /* the maxima drop NaN; a sum keeps it */
         }
     }
     if (!isfinite(sum))
-        norm[p] = NAN;
+        win[W - 1] = NAN;
     int relative = fl->rtol * n0 > fl->atol;
     fl->eps = relative ? fl->rtol * n0 : fl->atol;
-    *h = hl_flow_step_for(fl->eps, relative ? fl->ln_rtol + log(n0) : fl->ln_atol, norm, p);
+    double ln_eps = relative ? fl->ln_rtol + log(n0) : fl->ln_atol;
+    *h = hl_flow_step_for(&fl->check, fl->eps, ln_eps, win, p);
     if (isnan(*h))
         return hl_error_set(err, HL_EDOM, NULL, -1, 0,
                             "the solution is not finite (Taylor coefficients overflow) at t = %.17g", t);
-    fl->check = *h == INFINITY;
     if (*h < DBL_MIN || *h <= 4 * DBL_EPSILON * fabs(t))
         return hl_error_set(err, HL_ENOCONV, NULL, -1, 0, "step size underflow (h = %g) at t = %.17g",
                             *h, t);
     return HL_OK;
 }
 
-/* A step that the window of coefficients cannot size (see flow_impl.h):
+/* A step that the window of coefficients does not vouch for (see
+ * flow_impl.h):
  * shorten *h until its defect says the tail past the order is under eps. */
 static int check_step(double *h, hl_flow *fl, double dir, double t, hl_error *err)
 {

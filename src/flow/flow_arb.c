@@ -17,7 +17,6 @@ struct hl_flow_arb {
     arb_ptr coef;   /* n * (p+1) */
     arb_ptr zt;     /* n */
     arb_ptr dz, fz; /* n each: P'(h) and f(P(h)), to check a step */
-    double *norm;   /* p+1: the coefficient norms the step reads */
     double eps;     /* the current step's tolerance */
     int check;      /* the current step is to be checked (hl_flow_shrink) */
     arb_t h, tau, rem;
@@ -46,7 +45,6 @@ int hl_flow_arb_new(hl_flow_arb **out, hl_tape *f, double digits, hl_error *err)
     fl->zt = _arb_vec_init(n);
     fl->dz = _arb_vec_init(n);
     fl->fz = _arb_vec_init(n);
-    fl->norm = hl_xcalloc((size_t)fl->p + 1, sizeof *fl->norm);
     arb_init(fl->h);
     arb_init(fl->tau);
     arb_init(fl->rem);
@@ -62,7 +60,6 @@ void hl_flow_arb_free(hl_flow_arb *fl)
     _arb_vec_clear(fl->zt, fl->n);
     _arb_vec_clear(fl->dz, fl->n);
     _arb_vec_clear(fl->fz, fl->n);
-    free(fl->norm);
     arb_clear(fl->h);
     arb_clear(fl->tau);
     arb_clear(fl->rem);
@@ -114,36 +111,32 @@ static int step_size(double *h, hl_flow_arb *fl, arb_srcptr z, const arb_t t, hl
     int st = hl_tape_taylor_ode_arb(fl->coef, p, fl->prec, fl->f, err);
     if (st != HL_OK)
         return st;
-    const int lo = hl_flow_window_lo(p);
-    double n0 = 0, *norm = fl->norm;
+    enum { W = HL_FLOW_WINDOW };
+    double n0 = 0, win[W] = {0}; /* the norms of the orders p-W+1..p */
     int finite = 1;
-    for (int k = lo; k <= p; k++)
-        norm[k] = 0;
     for (int i = 0; i < n; i++) {
-        arb_srcptr c = fl->coef + (size_t)i * S;
+        arb_srcptr c = fl->coef + (size_t)i * S, cw = c + p - W + 1;
         n0 = fmax(n0, fabs(mid_d(c)));
-        for (int k = lo; k <= p; k++) {
-            finite &= arb_is_finite(c + k);
-            norm[k] = fmax(norm[k], fabs(mid_d(c + k)));
+        for (int j = 0; j < W; j++) {
+            finite &= arb_is_finite(cw + j);
+            win[j] = fmax(win[j], fabs(mid_d(cw + j)));
         }
     }
     double ln_eps = fl->ln_tol + (n0 > 1 ? log(n0) : 0);
     fl->eps = exp(ln_eps);
-    *h = finite ? hl_flow_step_for(fl->eps, ln_eps, norm, p) : NAN;
+    *h = finite ? hl_flow_step_for(&fl->check, fl->eps, ln_eps, win, p) : NAN;
     if (isnan(*h))
         return hl_error_set(err, HL_EDOM, NULL, -1, 0,
                             "the solution is not finite (Taylor coefficients overflow) at t = %.17g",
                             mid_d(t));
-    fl->check = *h == INFINITY;
-    if (fl->check)
-        return HL_OK;
     if (!(*h > 1e-300) || *h < ldexp(fabs(mid_d(t)), -(int)fl->prec + 4))
         return hl_error_set(err, HL_ENOCONV, NULL, -1, 0, "step size underflow (h = %g) at t = %.17g",
                             *h, mid_d(t));
     return HL_OK;
 }
 
-/* A step that the window of coefficients cannot size (see flow_impl.h):
+/* A step that the window of coefficients does not vouch for (see
+ * flow_impl.h):
  * shorten fl->h (signed by dir) until its defect says the tail past the
  * order is under eps. */
 static int check_step(hl_flow_arb *fl, int dir, const arb_t t, hl_error *err)

@@ -9,13 +9,17 @@
  * has terms only at the orders 1 mod 4 and p(t) at 0 mod 4, so N_{p-1} and
  * N_p can both be 0 (an unbounded step), or tiny near q = 0 (a step far too
  * long).  So the step also keeps the terms of the orders below, back to
- * p - HL_FLOW_WINDOW + 1, under eps e^(3 (p-1-k)): at Jorba & Zou's step a
+ * p - HL_FLOW_WINDOW + 1, under eps e^(3.5 (p-1-k)): at Jorba & Zou's step a
  * converging series falls by about e^2 an order, so this binds only where
  * an order below is out of line with the last two (an ordinary orbit keeps
- * its step), and then the terms past p, which repeat the pattern, are under
- * eps.  If every order of the window is 0, the coefficients say nothing of
- * the tail (q^10/10 from q = 0, or a series that terminates: a free fall):
- * the driver then checks the step itself (hl_flow_shrink). */
+ * its step), and then the terms past p, which repeat the pattern, stay
+ * near eps.  Where the orders below do bind, and where every order of the
+ * window is 0 (q^10/10 from q = 0, or a series that terminates: a free
+ * fall), the coefficients are not trusted alone: the driver checks the
+ * step itself by its defect (hl_flow_shrink).
+ * NOTE: a pattern of vanishing orders longer than the window, near (not
+ * at) its point of symmetry, is not seen: q^10/10 from q = 1e-9 at order 8
+ * (tol 1e-6).  The order must exceed the pattern's period there. */
 #ifndef HAMLIE_FLOW_IMPL_H
 #define HAMLIE_FLOW_IMPL_H
 
@@ -23,21 +27,22 @@
 
 #define HL_FLOW_MAX_ORDER 1000
 
-/* The orders the step reads: the last HL_FLOW_WINDOW.  Six see a pattern
- * of up to five vanishing orders (q^6/6 from q = 0 has four). */
+/* The orders the step reads: the last HL_FLOW_WINDOW, p-5..p.  Six see a
+ * pattern of up to five vanishing orders (q^6/6 from q = 0 has four). */
 #define HL_FLOW_WINDOW 6
 
-/* p = ceil(-ln(tol)/2) + 1 from ln(tol) < 0; at least 2. */
+/* The orders below p-1 may exceed eps by e^HL_FLOW_SLACK an order (see
+ * above): 3.5 leaves the steps of the pendulum, Henon-Heiles and Kepler as
+ * Jorba & Zou chose them, and the quartic from q = 0 within its tolerance. */
+#define HL_FLOW_SLACK 3.5
+
+/* p = ceil(-ln(tol)/2) + 1 from ln(tol) < 0; at least the window. */
 static inline int hl_flow_order_for(double ln_tol)
 {
     double p = ceil(-ln_tol / 2) + 1;
-    return p < 2 ? 2 : p > HL_FLOW_MAX_ORDER + 1 ? HL_FLOW_MAX_ORDER + 1 : (int)p;
-}
-
-/* The lowest order of the window. */
-static inline int hl_flow_window_lo(int p)
-{
-    return p - HL_FLOW_WINDOW + 1 < 1 ? 1 : p - HL_FLOW_WINDOW + 1;
+    return p < HL_FLOW_WINDOW          ? HL_FLOW_WINDOW
+           : p > HL_FLOW_MAX_ORDER + 1 ? HL_FLOW_MAX_ORDER + 1
+                                       : (int)p;
 }
 
 /* x^k for k >= 0 by squaring */
@@ -50,17 +55,19 @@ static inline double hl_flow_powi(double x, int k)
     return r;
 }
 
-/* The step from norm[k] = N_k, k = hl_flow_window_lo(p)..p, for the
+/* The step from win[j] = N_k, k = p - HL_FLOW_WINDOW + 1 + j, for the
  * tolerance eps and ln_eps = ln(eps) (eps may underflow where ln_eps does
  * not: then the test below fails and the log domain decides): > 0; +inf
- * when every N_k of the window is 0 (then see hl_flow_shrink); NaN when
- * one is not finite. */
-static inline double hl_flow_step_for(double eps, double ln_eps, const double *norm, int p)
+ * when every N_k of the window is 0; NaN when one is not finite.  *check
+ * = 1 if the step is to be checked (hl_flow_shrink), else 0. */
+static inline double hl_flow_step_for(int *check, double eps, double ln_eps, const double *win,
+                                      int p)
 {
-    const int lo = hl_flow_window_lo(p);
+    const int lo = p - HL_FLOW_WINDOW + 1;
     double sum = 0;
-    for (int k = lo; k <= p; k++)
-        sum += norm[k]; /* NaN or inf if a norm is */
+    for (int j = 0; j < HL_FLOW_WINDOW; j++)
+        sum += win[j]; /* NaN or inf if a norm is */
+    *check = 1;        /* unless the window vouches for the step */
     if (!isfinite(sum))
         return NAN;
     if (sum == 0)
@@ -68,30 +75,42 @@ static inline double hl_flow_step_for(double eps, double ln_eps, const double *n
     /* Jorba & Zou, in the log domain so that one exp gives the step */
     double e = INFINITY;
     for (int k = p - 1; k <= p; k++)
-        if (norm[k] > 0)
-            e = fmin(e, (ln_eps - log(norm[k])) / k);
+        if (win[k - lo] > 0)
+            e = fmin(e, (ln_eps - log(win[k - lo])) / k);
     const double fudge = -0.7 / (p - 1);
     double h = exp(e + fudge);
-    /* the orders below: N_k h^k <= eps e^(3 (p-1-k)), tested without logs
-     * (h = inf makes any nonzero N_k h^k inf) and solved where it fails */
-    double bound = eps * exp(3.0), hk = hl_flow_powi(h, p - 2);
-    for (int k = p - 2; k >= lo; k--, bound *= exp(3.0), hk /= h) {
-        if (norm[k] > 0 && !(norm[k] * hk <= bound)) { /* NaN (inf/inf) fails too */
-            double ek = (ln_eps + 3.0 * (p - 1 - k) - log(norm[k])) / k;
-            if (ek < e) {
+    /* the orders below: N_k h^k <= eps e^(3.5 (p-1-k)).  First all at once,
+     * without logs or branches (most steps end here)... */
+    double worst = 0, pw = hl_flow_powi(h, lo), c = exp(-HL_FLOW_SLACK * (HL_FLOW_WINDOW - 2));
+    for (int j = 0; j < HL_FLOW_WINDOW - 2; j++, pw *= h, c *= exp(HL_FLOW_SLACK)) {
+        double t = win[j] * pw * c; /* NaN if N_k = 0 and h^k = inf: no bound */
+        worst = t > worst ? t : worst;
+    }
+    *check = 0;
+    if (worst <= eps && h < INFINITY)
+        return h;
+    /* ...else one by one, solved where it fails; a shorter h keeps the
+     * orders already passed */
+    double bound = eps * exp(HL_FLOW_SLACK), hk = hl_flow_powi(h, p - 2), inv_h = 1 / h;
+    for (int k = p - 2; k >= lo; k--, bound *= exp(HL_FLOW_SLACK), hk *= inv_h) {
+        if (win[k - lo] > 0 && !(win[k - lo] * hk <= bound)) { /* NaN (h = inf) fails too */
+            double ek = (ln_eps + HL_FLOW_SLACK * (p - 1 - k) - log(win[k - lo])) / k;
+            if (ek < e) { /* not if eps underflowed: the test failed wrongly */
+                *check = 1;
                 e = ek;
                 h = exp(e + fudge);
                 hk = hl_flow_powi(h, k);
+                inv_h = 1 / h;
             }
         }
     }
     return h;
 }
 
-/* A step chosen without the window (every order of it 0) is checked by
- * its defect, d = P'(h) - f(P(h)) for the step's polynomial P: the tail
- * past p is about h |d|_inf / (p+1) (its first term's derivative
- * dominates).  Returns 0 to take h, else the next, shorter h to try. */
+/* A step that the window does not vouch for is checked by its defect,
+ * d = P'(h) - f(P(h)) for the step's polynomial P: the tail past p is
+ * about h |d|_inf / (p+1) (its first term's derivative dominates).  Returns 0 to take h, else the
+ * next, shorter h to try. */
 static inline double hl_flow_shrink(double h, double defect, double eps, int p)
 {
     double err = h * defect / (p + 1);

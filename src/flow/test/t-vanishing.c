@@ -23,12 +23,12 @@
 static hl_pool *P;
 
 /* periods from the initial points used below (see the header) */
-#define T_QUARTIC_E1_2 6.236338999021644921159185  /* q^4/4, E = 1/2 */
-#define T_QUARTIC_E1_4 7.416298709205487673735401  /* q^4/4, E = 1/4 */
-#define T_SEXTIC_E1_2 5.833312628520677158766765   /* q^6/6, E = 1/2 */
-#define T_DECIC_E1_2 5.32012498212865707707456     /* q^10/10, E = 1/2 */
-#define T_QUARTIC_E5_8 5.897965279223985341910745  /* q^4/4, E = 5/8 */
-#define DIGITS_OF(x) DIGITS_OF_(x) /* a period as text, for Arb */
+#define T_QUARTIC_E1_2 6.236338999021644921159185 /* q^4/4, E = 1/2 */
+#define T_QUARTIC_E1_4 7.416298709205487673735401 /* q^4/4, E = 1/4 */
+#define T_SEXTIC_E1_2 5.833312628520677158766765  /* q^6/6, E = 1/2 */
+#define T_DECIC_E1_2 5.32012498212865707707456    /* q^10/10, E = 1/2 */
+#define T_QUARTIC_E5_8 5.897965279223985341910745 /* q^4/4, E = 5/8 */
+#define DIGITS_OF(x) DIGITS_OF_(x)                /* a period as text, for Arb */
 #define DIGITS_OF_(x) #x
 
 typedef struct system {
@@ -84,8 +84,8 @@ static int watch_fn(double t, const double *z, void *arg)
 /* Run s from z0 over one period T with 200 outputs in between; the worst
  * drift of the invariants, and the distance of z(T) from z0.  The run must
  * succeed and take more than one step per output's worth of orbit. */
-static void one_period(watch *w, double *back, system_t *s, const double *z0, double T,
-                       double atol, double rtol, long *steps)
+static void one_period(watch *w, double *back, system_t *s, const double *z0, double T, double atol,
+                       double rtol, long *steps)
 {
     enum { NOUT = 200 };
     hl_flow *fl = NULL;
@@ -121,8 +121,8 @@ static void check_period(const char *what, system_t *s, const double *z0, double
     double back;
     long steps;
     one_period(&w, &back, s, z0, T, tol, tol, &steps);
-    printf("%-34s tol %g: %5ld steps, invariants drift %.3g, back at the start within %.3g\n",
-           what, tol, steps, w.drift, back);
+    printf("%-34s tol %g: %5ld steps, invariants drift %.3g, back at the start within %.3g\n", what,
+           tol, steps, w.drift, back);
     CHECK_MSG(w.drift < max_drift, "%s: invariants drift %.3g", what, w.drift);
     CHECK_MSG(back < max_back, "%s: after one period %.3g from the start", what, back);
     CHECK_MSG(steps > 5, "%s: %ld steps for one period", what, steps);
@@ -189,8 +189,7 @@ static void test_quartic_2dof(void)
 {
     system_t s = make_system("(px^2+py^2)/2 + (x^4+y^4)/4 + x^2*y^2/2", 2);
     const double z0[4] = {0, 0, 1, 0.5};
-    check_period("2-dof quartic from (0, 0, 1, 0.5)", &s, z0, T_QUARTIC_E5_8, 1e-15, 1e-13,
-                 1e-12);
+    check_period("2-dof quartic from (0, 0, 1, 0.5)", &s, z0, T_QUARTIC_E5_8, 1e-15, 1e-13, 1e-12);
     free_system(&s);
 }
 
