@@ -222,7 +222,7 @@ static int drive(hl_flow *fl, double *thi, double *tlo, double *z, double tend, 
                  int nts, hl_flow_fn fn, void *arg, hl_error *err)
 {
     const double dir = tend >= *thi ? 1 : -1;
-    int j = 0, st;
+    int j = 0, st, first = 1;
     for (;;) {
         for (; j < nts && dir * ((ts[j] - *thi) - *tlo) <= 0; j++)
             if ((st = fn(ts[j], z, arg)) != 0)
@@ -235,8 +235,11 @@ static int drive(hl_flow *fl, double *thi, double *tlo, double *z, double tend, 
             return st;
         if (h > rem)
             h = rem;
-        if (fl->check && (st = check_step(&h, fl, dir, *thi, err)) != HL_OK)
+        /* the first step too: a run that starts near a point of symmetry
+         * sees tiny orders, not vanishing ones (flow_impl.h) */
+        if ((fl->check || first) && (st = check_step(&h, fl, dir, *thi, err)) != HL_OK)
             return st;
+        first = 0;
         int last = h == rem;
         for (double tau; j < nts && (tau = dir * ((ts[j] - *thi) - *tlo)) <= h; j++) {
             horner(fl->zt, fl->coef, fl->n, fl->p, dir * tau);

@@ -166,7 +166,7 @@ static int drive(hl_flow_arb *fl, arb_t t, arb_ptr z, const arb_t tend, arb_srcp
 {
     const slong prec = fl->prec;
     const int dir = arf_cmp(arb_midref(tend), arb_midref(t)) >= 0 ? 1 : -1;
-    int j = 0, st;
+    int j = 0, st, first = 1;
     for (;;) {
         for (; j < nts; j++) {
             arb_sub(fl->tau, ts + j, t, prec);
@@ -188,7 +188,7 @@ static int drive(hl_flow_arb *fl, arb_t t, arb_ptr z, const arb_t tend, arb_srcp
             arb_set(fl->h, fl->rem);
         else
             arb_set_d(fl->h, hd);
-        if (fl->check) {
+        if (fl->check || first) { /* the first step too: see flow.c */
             if (dir < 0)
                 arb_neg(fl->h, fl->h);
             if ((st = check_step(fl, dir, t, err)) != HL_OK)
@@ -196,6 +196,7 @@ static int drive(hl_flow_arb *fl, arb_t t, arb_ptr z, const arb_t tend, arb_srcp
             if (dir < 0)
                 arb_neg(fl->h, fl->h);
             last = arb_equal(fl->h, fl->rem);
+            first = 0;
         }
         for (; j < nts; j++) {
             arb_sub(fl->tau, ts + j, t, prec); /* signed offset into the step */

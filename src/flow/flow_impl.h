@@ -18,8 +18,10 @@
  * fall), the coefficients are not trusted alone: the driver checks the
  * step itself by its defect (hl_flow_shrink).
  * NOTE: a pattern of vanishing orders longer than the window, near (not
- * at) its point of symmetry, is not seen: q^10/10 from q = 1e-9 at order 8
- * (tol 1e-6).  The order must exceed the pattern's period there. */
+ * at) its point of symmetry, is not seen: q^10/10 near q = 0, where the
+ * orders 12..19 are tiny.  The driver checks the first step of a run
+ * always, since runs start at such points; an orbit that passes within
+ * 1e-6 of one later may lose accuracy there. */
 #ifndef HAMLIE_FLOW_IMPL_H
 #define HAMLIE_FLOW_IMPL_H
 
