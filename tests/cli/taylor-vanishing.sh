@@ -69,9 +69,14 @@ near(d["final_state"]["p"], 0.9994294736761303357068572, 1e-11)'
 run 0 run -H "$Q4" --scheme lie --tol 1e-15 --dt 1 --t 0 --init q=0,p=1 --json
 py 'assert d["final_state"] == {"q": 0, "p": 1} and d["taylor_steps"] == 0, d'
 
-# a tolerance double cannot reach: refused, and more digits are pointed to
+# a tolerance double cannot reach: refused before anything is written, and
+# more digits are pointed to (the adaptive run and a fixed-step reference)
 run 2 run -H "$Q4" --scheme lie --tol 1e-20 --dt 1 --t 10 --init q=0,p=1 --json
 err_has "below double precision"
+err_has "--digits 20"
 if [ ! -s "$tmp/out" ]; then ok; else bad "--tol 1e-20 wrote to stdout"; fi
+run 2 run -H "$Q4" --scheme rk4 --tol 1e-20 --dt 0.1 --t 1 --init q=0,p=1
+if [ ! -s "$tmp/out" ]; then ok; else bad "rk4 --tol 1e-20 wrote to stdout"; fi
+run 0 run -H "$Q4" --scheme lie --tol 1e-20 --digits 20 --dt 1 --t 1 --init q=0,p=1 --json
 
 finish
