@@ -17,7 +17,7 @@ struct hl_flow_arb {
     arb_ptr coef;   /* n * (p+1) */
     arb_ptr zt;     /* n */
     arb_ptr dz, fz; /* n each: P'(h) and f(P(h)), to check a step */
-    double eps;     /* the current step's tolerance */
+    double ln_eps;  /* the log of the current step's tolerance */
     int check;      /* the current step is to be checked (hl_flow_shrink) */
     arb_t h, tau, rem;
     long nsteps;
@@ -122,9 +122,9 @@ static int step_size(double *h, hl_flow_arb *fl, arb_srcptr z, const arb_t t, hl
             win[j] = fmax(win[j], fabs(mid_d(cw + j)));
         }
     }
-    double ln_eps = fl->ln_tol + (n0 > 1 ? log(n0) : 0);
-    fl->eps = exp(ln_eps);
-    *h = finite ? hl_flow_step_for(&fl->check, fl->eps, ln_eps, win, p) : NAN;
+    fl->ln_eps = fl->ln_tol + (n0 > 1 ? log(n0) : 0);
+    /* exp may underflow: see hl_flow_step_for */
+    *h = finite ? hl_flow_step_for(&fl->check, exp(fl->ln_eps), fl->ln_eps, win, p) : NAN;
     if (isnan(*h))
         return hl_error_set(err, HL_EDOM, NULL, -1, 0,
                             "the solution is not finite (Taylor coefficients overflow) at t = %.17g",
@@ -141,24 +141,34 @@ static int step_size(double *h, hl_flow_arb *fl, arb_srcptr z, const arb_t t, hl
  * order is under eps. */
 static int check_step(hl_flow_arb *fl, int dir, const arb_t t, hl_error *err)
 {
+    arb_t inv_eps; /* in Arb: eps itself may be below double's range */
+    arb_init(inv_eps);
+    arb_set_d(inv_eps, -fl->ln_eps);
+    arb_exp(inv_eps, inv_eps, 64);
+    int st = HL_OK;
     for (;;) {
         horner(fl->zt, fl, fl->h);
         horner_derivative(fl->dz, fl, fl->h);
         hl_tape_eval_arb(fl->fz, fl->zt, fl->prec, fl->f);
-        double defect = 0;
+        double defect = 0; /* in units of eps */
         for (int i = 0; i < fl->n; i++) {
             arb_sub(fl->tau, fl->dz + i, fl->fz + i, fl->prec);
+            arb_mul(fl->tau, fl->tau, inv_eps, fl->prec);
             double d = arb_is_finite(fl->tau) ? fabs(mid_d(fl->tau)) : INFINITY;
             defect = fmax(defect, d);
         }
-        double h = fabs(mid_d(fl->h)), next = hl_flow_shrink(h, defect, fl->eps, fl->p);
+        double h = fabs(mid_d(fl->h)), next = hl_flow_shrink(h, defect, 1, fl->p);
         if (next == 0)
-            return HL_OK;
-        if (!(next > 1e-300) || next < ldexp(fabs(mid_d(t)), -(int)fl->prec + 4))
-            return hl_error_set(err, HL_ENOCONV, NULL, -1, 0,
-                                "step size underflow (h = %g) at t = %.17g", next, mid_d(t));
+            break;
+        if (!(next > 1e-300) || next < ldexp(fabs(mid_d(t)), -(int)fl->prec + 4)) {
+            st = hl_error_set(err, HL_ENOCONV, NULL, -1, 0,
+                              "step size underflow (h = %g) at t = %.17g", next, mid_d(t));
+            break;
+        }
         arb_set_d(fl->h, dir * next);
     }
+    arb_clear(inv_eps);
+    return st;
 }
 
 static int drive(hl_flow_arb *fl, arb_t t, arb_ptr z, const arb_t tend, arb_srcptr ts, int nts,
