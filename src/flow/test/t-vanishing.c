@@ -12,7 +12,8 @@
  *     so after one period the orbit is back at its start;
  *   energy (and angular momentum for the rotation-invariant 2-dof quartic)
  *     conserved, and a radial orbit stays on its line;
- *   the equilibrium (0, 0) does not move at all;
+ *   the equilibrium (0, 0) does not move at all, and a free fall, whose
+ *     series terminates, is one exact step;
  *   the quartic's scaling: from (a, 0) the period is T(1, 0) / a. */
 #include <math.h>
 #include <stdlib.h>
@@ -131,6 +132,16 @@ static void check_period(const char *what, system_t *s, const double *z0, double
                   w.off_line);
 }
 
+/* energy conservation alone, over one period from near a point of symmetry */
+static void check_drift(const char *what, system_t *s, const double *z0, double T)
+{
+    watch w = {0};
+    double back;
+    long steps;
+    one_period(&w, &back, s, z0, T, 1e-15, 1e-15, &steps);
+    CHECK_MSG(w.drift < 1e-13, "%s: energy drift %.3g", what, w.drift);
+}
+
 static void test_quartic(void)
 {
     system_t s = make_system("p^2/2 + q^4/4", 1);
@@ -145,11 +156,7 @@ static void test_quartic(void)
                  1e-12);
     /* near q = 0 the coefficients of those orders are not 0 but tiny */
     const double near[2] = {1e-9, 1};
-    watch w = {0};
-    double back;
-    long steps;
-    one_period(&w, &back, &s, near, T_QUARTIC_E1_2, 1e-15, 1e-15, &steps);
-    CHECK_MSG(w.drift < 1e-13, "quartic from (1e-9, 1): energy drift %.3g", w.drift);
+    check_drift("quartic from (1e-9, 1)", &s, near, T_QUARTIC_E1_2);
     free_system(&s);
 }
 
@@ -183,11 +190,7 @@ static void test_sextic_decic(void)
     /* near q = 0: the orders 12..19 are tiny, not 0, and the window is
      * blind to them; the first step of a run is checked by its defect */
     const double near[2] = {1e-9, 1};
-    watch w = {0};
-    double back;
-    long steps;
-    one_period(&w, &back, &s, near, T_DECIC_E1_2, 1e-15, 1e-15, &steps);
-    CHECK_MSG(w.drift < 1e-13, "decic from (1e-9, 1): energy drift %.3g", w.drift);
+    check_drift("decic from (1e-9, 1)", &s, near, T_DECIC_E1_2);
     free_system(&s);
 }
 
@@ -201,8 +204,10 @@ static void test_quartic_2dof(void)
     free_system(&s);
 }
 
-/* the equilibrium: every coefficient past order 0 is 0, and the point stays */
-static void test_equilibrium(void)
+/* the equilibrium: every coefficient past order 0 is 0, and the point
+ * stays; a free fall: the series stops at order 2, and one step is exact,
+ * q = t - t^2/2 */
+static void test_equilibrium_free_fall(void)
 {
     system_t s = make_system("p^2/2 + q^4/4", 1);
     hl_flow *fl = NULL;
@@ -211,6 +216,14 @@ static void test_equilibrium(void)
     double t = 0, z[2] = {0, 0};
     CHECK_MSG(hl_flow_evolve(fl, &t, 1e3, z, &err) == HL_OK, "%s", err.msg);
     CHECK(t == 1e3 && z[0] == 0 && z[1] == 0);
+    hl_flow_free(fl);
+    free_system(&s);
+    s = make_system("p^2/2 + q", 1);
+    CHECK(hl_flow_new(&fl, s.vf, 1e-15, 1e-15, &err) == HL_OK);
+    t = 0, z[0] = 0, z[1] = 1;
+    CHECK_MSG(hl_flow_evolve(fl, &t, 10, z, &err) == HL_OK, "%s", err.msg);
+    CHECK_MSG(z[0] == -40 && z[1] == -9 && hl_flow_nsteps(fl) == 1, "free fall: %g %g, %ld steps",
+              z[0], z[1], hl_flow_nsteps(fl));
     hl_flow_free(fl);
     free_system(&s);
 }
@@ -255,7 +268,7 @@ int main(void)
     test_tiny_amplitude();
     test_sextic_decic();
     test_quartic_2dof();
-    test_equilibrium();
+    test_equilibrium_free_fall();
     arb_period("quartic from (0, 1)", "p^2/2 + q^4/4", 26, DIGITS_OF(T_QUARTIC_E1_2));
     arb_period("quartic from (0, 1)", "p^2/2 + q^4/4", 20, DIGITS_OF(T_QUARTIC_E1_2));
     arb_period("sextic from (0, 1)", "p^2/2 + q^6/6", 27, DIGITS_OF(T_SEXTIC_E1_2));
