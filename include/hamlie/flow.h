@@ -7,7 +7,7 @@
  * them and sums the polynomial.  Order and step follow Jorba & Zou,
  * Experiment. Math. 14 (2005) 99-117:
  *
- *   p = ceil(-ln(tol) / 2) + 1 (at least 6), tol = min(atol, rtol)
+ *   p = ceil(-ln(tol) / 2) + 1,           tol = min(atol, rtol)
  *   eps = max(atol, rtol * |z|_inf)       (absolute + relative)
  *   h = min_{k = p-1, p} (eps / |z^[k]|_inf)^(1/k) * exp(-0.7 / (p - 1))
  *

@@ -175,10 +175,10 @@ static int taylor_at(double *c, const double *z, hl_exact_flow *f, hl_error *err
  * coefficients c at z, shortened by its defect where the rule asks. */
 static double jz_step(const double *c, const double *z, hl_exact_flow *f)
 {
-    enum { W = HL_FLOW_WINDOW };
-    double eps = 1e-16 * fmax(1.0, fmax(fabs(z[0]), fabs(z[1]))), win[W];
-    for (int j = 0; j < W; j++)
-        win[j] = fmax(fabs(c[ORD - W + 1 + j]), fabs(c[NC + ORD - W + 1 + j]));
+    const int lo = hl_flow_window_lo(ORD);
+    double eps = 1e-16 * fmax(1.0, fmax(fabs(z[0]), fabs(z[1]))), win[HL_FLOW_WINDOW];
+    for (int k = lo; k <= ORD; k++)
+        win[k - lo] = fmax(fabs(c[k]), fabs(c[NC + k]));
     int check;
     double h = hl_flow_step_for(&check, eps, log(eps), win, ORD);
     if (h == INFINITY)

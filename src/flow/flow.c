@@ -155,6 +155,20 @@ static int all_finite(const double *z, int n)
     return 1;
 }
 
+/* win[j] = max(win[j], |cw[j]|) for j < nw, and their sum (the maxima
+ * drop NaN; a sum keeps it).  Inlined twice: with nw the constant window
+ * (any order from 6 on, one step of the hot loop) it unrolls. */
+static inline double add_norms(double *win, const double *cw, int nw)
+{
+    double sum = 0;
+    for (int j = 0; j < nw; j++) {
+        double a = fabs(cw[j]);
+        win[j] = a > win[j] ? a : win[j];
+        sum += a;
+    }
+    return sum;
+}
+
 /* One step's coefficients at z, and its size (> 0, maybe +inf). */
 static int step_size(double *h, hl_flow *fl, const double *z, double t, hl_error *err)
 {
@@ -165,20 +179,17 @@ static int step_size(double *h, hl_flow *fl, const double *z, double t, hl_error
     int st = hl_tape_taylor_ode_d(c, p, fl->f, err);
     if (st != HL_OK)
         return st;
-    enum { W = HL_FLOW_WINDOW };
-    double n0 = 0, sum = 0, win[W] = {0}; /* the norms of the orders p-W+1..p */
+    const int lo = hl_flow_window_lo(p), nw = p - lo + 1;
+    double n0 = 0, sum = 0, win[HL_FLOW_WINDOW] = {0}; /* the norms of the orders lo..p */
     for (int i = 0; i < n; i++) {
-        const double *ci = c + (size_t)i * S, *cw = ci + p - W + 1;
+        const double *ci = c + (size_t)i * S;
         double a0 = fabs(ci[0]);
         n0 = a0 > n0 ? a0 : n0;
-        for (int j = 0; j < W; j++) {
-            double a = fabs(cw[j]);
-            win[j] = a > win[j] ? a : win[j];
-            sum += a; /* the maxima drop NaN; a sum keeps it */
-        }
+        sum += nw == HL_FLOW_WINDOW ? add_norms(win, ci + lo, HL_FLOW_WINDOW)
+                                    : add_norms(win, ci + lo, nw);
     }
     if (!isfinite(sum))
-        win[W - 1] = NAN;
+        win[nw - 1] = NAN;
     int relative = fl->rtol * n0 > fl->atol;
     fl->eps = relative ? fl->rtol * n0 : fl->atol;
     double ln_eps = relative ? fl->ln_rtol + log(n0) : fl->ln_atol;

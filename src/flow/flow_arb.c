@@ -111,13 +111,13 @@ static int step_size(double *h, hl_flow_arb *fl, arb_srcptr z, const arb_t t, hl
     int st = hl_tape_taylor_ode_arb(fl->coef, p, fl->prec, fl->f, err);
     if (st != HL_OK)
         return st;
-    enum { W = HL_FLOW_WINDOW };
-    double n0 = 0, win[W] = {0}; /* the norms of the orders p-W+1..p */
+    const int lo = hl_flow_window_lo(p), nw = p - lo + 1;
+    double n0 = 0, win[HL_FLOW_WINDOW] = {0}; /* the norms of the orders lo..p */
     int finite = 1;
     for (int i = 0; i < n; i++) {
-        arb_srcptr c = fl->coef + (size_t)i * S, cw = c + p - W + 1;
+        arb_srcptr c = fl->coef + (size_t)i * S, cw = c + lo;
         n0 = fmax(n0, fabs(mid_d(c)));
-        for (int j = 0; j < W; j++) {
+        for (int j = 0; j < nw; j++) {
             finite &= arb_is_finite(cw + j);
             win[j] = fmax(win[j], fabs(mid_d(cw + j)));
         }

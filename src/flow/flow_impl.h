@@ -38,13 +38,26 @@
  * Jorba & Zou chose them, and the quartic from q = 0 within its tolerance. */
 #define HL_FLOW_SLACK 3.5
 
-/* p = ceil(-ln(tol)/2) + 1 from ln(tol) < 0; at least the window. */
+/* p = ceil(-ln(tol)/2) + 1 from ln(tol) < 0; at least 2.  NOTE: not at
+ * least the window: an order above Jorba & Zou's takes steps nearer the
+ * radius of convergence, where the slack below is too loose (order 10 at
+ * tol 1e-3 lost the energy of the sextic from q = 0). */
 static inline int hl_flow_order_for(double ln_tol)
 {
     double p = ceil(-ln_tol / 2) + 1;
-    return p < HL_FLOW_WINDOW          ? HL_FLOW_WINDOW
-           : p > HL_FLOW_MAX_ORDER + 1 ? HL_FLOW_MAX_ORDER + 1
-                                       : (int)p;
+    return p < 2 ? 2 : p > HL_FLOW_MAX_ORDER + 1 ? HL_FLOW_MAX_ORDER + 1 : (int)p;
+}
+
+/* Below this order every step is checked by its defect (hl_flow_shrink):
+ * a low order's window sees too little of the series (at order 4, tol
+ * 1e-2, the sextic and octic wells took steps that lost all their energy,
+ * from any point).  Tolerances above 1.5e-8 only. */
+#define HL_FLOW_CHECK_BELOW 10
+
+/* The lowest order of the window (order 0, the state, is not in it). */
+static inline int hl_flow_window_lo(int p)
+{
+    return p - HL_FLOW_WINDOW + 1 < 1 ? 1 : p - HL_FLOW_WINDOW + 1;
 }
 
 /* x^k for k >= 0 by squaring */
@@ -57,7 +70,7 @@ static inline double hl_flow_powi(double x, int k)
     return r;
 }
 
-/* The step from win[j] = N_k, k = p - HL_FLOW_WINDOW + 1 + j, for the
+/* The step from win[k - lo] = N_k, k = lo..p (lo = hl_flow_window_lo), for the
  * tolerance eps and ln_eps = ln(eps) (eps may underflow where ln_eps does
  * not: then the test below fails and the log domain decides): > 0; +inf
  * when every N_k of the window is 0; NaN when one is not finite.  *check
@@ -65,10 +78,10 @@ static inline double hl_flow_powi(double x, int k)
 static inline double hl_flow_step_for(int *check, double eps, double ln_eps, const double *win,
                                       int p)
 {
-    const int lo = p - HL_FLOW_WINDOW + 1;
+    const int lo = hl_flow_window_lo(p);
     double sum = 0;
-    for (int j = 0; j < HL_FLOW_WINDOW; j++)
-        sum += win[j]; /* NaN or inf if a norm is */
+    for (int k = lo; k <= p; k++)
+        sum += win[k - lo]; /* NaN or inf if a norm is */
     *check = 1;        /* unless the window vouches for the step */
     if (!isfinite(sum))
         return NAN;
@@ -83,12 +96,13 @@ static inline double hl_flow_step_for(int *check, double eps, double ln_eps, con
     double h = exp(e + fudge);
     /* the orders below: N_k h^k <= eps e^(3.5 (p-1-k)).  First all at once,
      * without logs or branches (most steps end here)... */
-    double worst = 0, pw = hl_flow_powi(h, lo), c = exp(-HL_FLOW_SLACK * (HL_FLOW_WINDOW - 2));
-    for (int j = 0; j < HL_FLOW_WINDOW - 2; j++, pw *= h, c *= exp(HL_FLOW_SLACK)) {
-        double t = win[j] * pw * c; /* NaN if N_k = 0 and h^k = inf: no bound */
+    double worst = 0, pw = hl_flow_powi(h, lo);
+    double c = lo > 1 ? exp(-HL_FLOW_SLACK * (HL_FLOW_WINDOW - 2)) : exp(-HL_FLOW_SLACK * (p - 2));
+    for (int k = lo; k <= p - 2; k++, pw *= h, c *= exp(HL_FLOW_SLACK)) {
+        double t = win[k - lo] * pw * c; /* NaN if N_k = 0 and h^k = inf: no bound */
         worst = t > worst ? t : worst;
     }
-    *check = 0;
+    *check = p < HL_FLOW_CHECK_BELOW;
     if (worst <= eps && h < INFINITY)
         return h;
     /* ...else one by one, solved where it fails; a shorter h keeps the
@@ -111,8 +125,8 @@ static inline double hl_flow_step_for(int *check, double eps, double ln_eps, con
 
 /* A step that the window does not vouch for is checked by its defect,
  * d = P'(h) - f(P(h)) for the step's polynomial P: the tail past p is
- * about h |d|_inf / (p+1) (its first term's derivative dominates).  Returns 0 to take h, else the
- * next, shorter h to try. */
+ * about h |d|_inf / (p+1) (its first term's derivative dominates).
+ * Returns 0 to take h, else the next, shorter h to try. */
 static inline double hl_flow_shrink(double h, double defect, double eps, int p)
 {
     double err = h * defect / (p + 1);

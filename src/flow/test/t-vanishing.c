@@ -14,7 +14,9 @@
  *     conserved, and a radial orbit stays on its line;
  *   the equilibrium (0, 0) does not move at all, and a free fall, whose
  *     series terminates, is one exact step;
- *   the quartic's scaling: from (a, 0) the period is T(1, 0) / a. */
+ *   the quartic's scaling: from (a, 0) the period is T(1, 0) / a.
+ * And low orders (loose tolerances), which see little of the series
+ * anywhere. */
 #include <math.h>
 #include <stdlib.h>
 
@@ -194,6 +196,30 @@ static void test_sextic_decic(void)
     free_system(&s);
 }
 
+/* Loose tolerances give low orders (tol 1e-2: 4), whose few coefficients
+ * say little of the series, at any point: every step is checked there.
+ * Energy over t = 20 (3-4 periods, 100-200 steps of local error tol)
+ * within 10 tol (the steps it guards against lost 500 to 1e15), from q = 0
+ * and from q = 0.3, no point of symmetry. */
+static void test_low_orders(void)
+{
+    const char *Hs[] = {"p^2/2 + q^6/6", "p^2/2 + q^8/8", "p^2/2 + q^10/10"};
+    const double starts[2][2] = {{0, 1}, {0.3, 1}}, tols[] = {1e-2, 1e-3, 1e-5};
+    for (int i = 0; i < 3; i++) {
+        system_t s = make_system(Hs[i], 1);
+        for (int j = 0; j < 2; j++)
+            for (int k = 0; k < 3; k++) {
+                watch w = {0};
+                double back;
+                long steps;
+                one_period(&w, &back, &s, starts[j], 20, tols[k], tols[k], &steps);
+                CHECK_MSG(w.drift < 10 * tols[k], "%s from (%g, 1) at tol %g: energy drift %.3g",
+                          Hs[i], starts[j][0], tols[k], w.drift);
+            }
+        free_system(&s);
+    }
+}
+
 /* (x^2 + y^2)^2/4 written out: from the origin the orbit is radial, on the
  * line y = x py0/px0, with u'' = -u^3 along it (E = 5/8) */
 static void test_quartic_2dof(void)
@@ -268,6 +294,7 @@ int main(void)
     test_tiny_amplitude();
     test_sextic_decic();
     test_quartic_2dof();
+    test_low_orders();
     test_equilibrium_free_fall();
     arb_period("quartic from (0, 1)", "p^2/2 + q^4/4", 26, DIGITS_OF(T_QUARTIC_E1_2));
     arb_period("quartic from (0, 1)", "p^2/2 + q^4/4", 20, DIGITS_OF(T_QUARTIC_E1_2));
