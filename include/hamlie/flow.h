@@ -17,8 +17,8 @@
  * ordinary orbit's step as it is; where they shorten it, or all of the
  * last six orders are 0, the step is checked by its defect
  * |P'(h) - f(P(h))| (P the step's polynomial) and shortened until the
- * tail it implies is under eps (so is the first step of each run or
- * evolve).  The equilibrium, all of whose orders past 0 vanish, stays put
+ * tail it implies is under eps (so are the first step of each run or
+ * evolve, and every step below order 10: tolerances above 1.5e-8).  The equilibrium, all of whose orders past 0 vanish, stays put
  * in one step.  (src/flow/flow_impl.h says why, and what it cannot see.)
  *
  * Dense output: the polynomial of a step is valid over the whole step, so
