@@ -82,7 +82,7 @@ static inline double hl_flow_step_for(int *check, double eps, double ln_eps, con
     double sum = 0;
     for (int k = lo; k <= p; k++)
         sum += win[k - lo]; /* NaN or inf if a norm is */
-    *check = 1;        /* unless the window vouches for the step */
+    *check = 1; /* unless the window vouches for the step */
     if (!isfinite(sum))
         return NAN;
     if (sum == 0)
