@@ -11,6 +11,16 @@
  *   eps = max(atol, rtol * |z|_inf)       (absolute + relative)
  *   h = min_{k = p-1, p} (eps / |z^[k]|_inf)^(1/k) * exp(-0.7 / (p - 1))
  *
+ * made safe where orders of the series vanish by symmetry (at q = 0 in
+ * the well q^4/4 the last two can both be 0): the orders p-5..p-2 also
+ * bound the step, |z^[k]| h^k <= eps e^(3.5 (p-1-k)), which leaves an
+ * ordinary orbit's step as it is; where they shorten it, or all of the
+ * last six orders are 0, the step is checked by its defect
+ * |P'(h) - f(P(h))| (P the step's polynomial) and shortened until the
+ * tail it implies is under eps (so are the first step of each run or
+ * evolve, and every step below order 10: tolerances above 1.5e-8).  The equilibrium, all of whose orders past 0 vanish, stays put
+ * in one step.  (src/flow/flow_impl.h says why, and what it cannot see.)
+ *
  * Dense output: the polynomial of a step is valid over the whole step, so
  * outputs at given times are evaluated on it, without shortening steps (only
  * the last step is cut to land exactly on the final time).  Time is carried
@@ -30,6 +40,7 @@
 #define HAMLIE_FLOW_H
 
 #include <arb.h>
+#include <float.h>
 #include "hamlie/error.h"
 #include "hamlie/tape.h"
 
@@ -41,8 +52,10 @@ extern "C" {
 
 typedef struct hl_flow hl_flow;
 
-/* atol, rtol > 0.  HL_EINVAL if the tape is not square or a tolerance is
- * not positive. */
+/* atol, rtol > 0, rtol >= HL_FLOW_MIN_RTOL (a quarter of double's epsilon:
+ * smaller cannot be reached in double).  HL_EINVAL if the tape is not
+ * square or a tolerance is out of range. */
+#define HL_FLOW_MIN_RTOL (DBL_EPSILON / 4)
 int hl_flow_new(hl_flow **out, hl_tape *f, double atol, double rtol, hl_error *err);
 void hl_flow_free(hl_flow *flow); /* NULL is a no-op */
 

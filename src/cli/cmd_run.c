@@ -14,6 +14,7 @@
 
 #include "cli/cli.h"
 #include "hamlie/exact.h"
+#include "hamlie/flow.h"
 #include "hamlie/run.h"
 #include "hamlie/runplot.h"
 
@@ -38,7 +39,7 @@ const char cmd_run_help[] =
     "  --observe F          a column more: any formula in the variables and H\n"
     "                       (repeatable)\n"
     "  --tol TOL            the tolerance of the Taylor integrator (reference, or\n"
-    "                       the adaptive run; default 1e-15)\n"
+    "                       the adaptive run; default 1e-15, at least 5.6e-17)\n"
     "  --no-reference       no reference trajectory: no sigma column (faster)\n"
     "  --orders D1,D2,...   run with each step to --t and print the observed global\n"
     "                       order log(e1/e2)/log(D1/D2) of consecutive steps; e is\n"
@@ -143,6 +144,10 @@ static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
         return rc;
     if (!(r->tol > 0) || !isfinite(r->tol))
         return cli_usage(cmd, "--tol must be positive, not '%s'", r->tol_s);
+    if (r->tol < HL_FLOW_MIN_RTOL && r->digits_s == NULL)
+        return cli_usage(cmd, "--tol %s is below double precision (%.2g): for more digits use "
+                              "--scheme lie --digits %.0f",
+                         r->tol_s, HL_FLOW_MIN_RTOL, ceil(-log10(r->tol)));
     r->every = 1;
     if (r->every_s != NULL) {
         char *end;

@@ -20,6 +20,7 @@
 #include "hamlie/flow.h"
 #include "base/buf.h"
 #include "exact/exact_impl.h"
+#include "flow/flow_impl.h"
 
 #define ORD HL_EXACT_SERIES_DEGREE /* Taylor order of the table polynomials (20) */
 #define NC (ORD + 1)
@@ -170,17 +171,29 @@ static int taylor_at(double *c, const double *z, hl_exact_flow *f, hl_error *err
     return hl_tape_taylor_ode_d(c, ORD, f->vf, err);
 }
 
-/* Jorba-Zou step for the coefficients c. */
-static double jz_step(const double *c, const double *z)
+/* The step of the Taylor integrator's rule (flow/flow_impl.h) for the
+ * coefficients c at z, shortened by its defect where the rule asks. */
+static double jz_step(const double *c, const double *z, hl_exact_flow *f)
 {
-    double eps = 1e-16 * fmax(1.0, fmax(fabs(z[0]), fabs(z[1])));
-    double h = INFINITY;
-    for (int k = ORD - 1; k <= ORD; k++) {
-        double a = fmax(fabs(c[k]), fabs(c[NC + k]));
-        if (a > 0)
-            h = fmin(h, pow(eps / a, 1.0 / k));
+    const int lo = hl_flow_window_lo(ORD);
+    double eps = 1e-16 * fmax(1.0, fmax(fabs(z[0]), fabs(z[1]))), win[HL_FLOW_WINDOW];
+    for (int k = lo; k <= ORD; k++)
+        win[k - lo] = fmax(fabs(c[k]), fabs(c[NC + k]));
+    int check;
+    double h = hl_flow_step_for(&check, eps, log(eps), win, ORD);
+    if (h == INFINITY)
+        h = 1; /* no scale from the coefficients: the defect finds one */
+    while (check && h > 1e-300) {
+        double zh[2], dz[2], fz[2];
+        poly_eval(zh, dz, c, h);
+        hl_tape_eval_d(fz, zh, f->vf);
+        double d0 = fabs(dz[0] - fz[0]), d1 = fabs(dz[1] - fz[1]);
+        double next = hl_flow_shrink(h, d0 > d1 || isnan(d0) ? d0 : d1, eps, ORD);
+        if (next == 0)
+            break;
+        h = next;
     }
-    return h * exp(-0.7 / (ORD - 1));
+    return h;
 }
 
 int hl_exact_turning_point_(double *qt, double q0, double E, hl_tape *Ht, hl_error *err)
@@ -340,7 +353,7 @@ static int build_table(hl_exact_flow *f, const double *z0, hl_error *err)
     double t = 0, tc = 0, hmin = INFINITY;
     long nsteps = 0;
     for (;;) {
-        double h = jz_step(c, z);
+        double h = jz_step(c, z, f);
         if (!(h > 0) || ++nsteps > 10000000L)
             return hl_error_set(err, HL_EDOM, NULL, -1, 0,
                                 "period not found (separatrix or unbounded orbit?)");

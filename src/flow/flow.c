@@ -15,6 +15,9 @@ struct hl_flow {
     double ln_atol, ln_rtol;
     double *coef; /* n * (p+1) Taylor coefficients of the current step */
     double *zt;   /* n: state at an output time */
+    double *dz, *fz; /* n each: P'(h) and f(P(h)), to check a step */
+    double eps;      /* the current step's tolerance */
+    int check;       /* the current step is to be checked (hl_flow_shrink) */
     long nsteps;
     double native_end; /* hl_flow_native_for's t_end, NAN if not asked */
     double t_probe;    /* the time of the first step since it was asked */
@@ -33,6 +36,11 @@ int hl_flow_new(hl_flow **out, hl_tape *f, double atol, double rtol, hl_error *e
     if (!(atol > 0) || !(rtol > 0) || !isfinite(atol) || !isfinite(rtol))
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
                             "tolerances must be positive (atol %g, rtol %g)", atol, rtol);
+    if (rtol < HL_FLOW_MIN_RTOL)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                            "the tolerance %g is below double precision (%.2g): for more digits use "
+                            "the Arb integrator",
+                            rtol, HL_FLOW_MIN_RTOL);
     hl_flow *fl = hl_xcalloc(1, sizeof *fl);
     fl->f = f;
     fl->n = n;
@@ -40,9 +48,13 @@ int hl_flow_new(hl_flow **out, hl_tape *f, double atol, double rtol, hl_error *e
     fl->rtol = rtol;
     fl->ln_atol = log(atol);
     fl->ln_rtol = log(rtol);
-    fl->p = hl_flow_order_for(log(fmin(atol, rtol)));
+    /* an atol far below rtol only says that the relative error counts
+     * near 0; an order from it would not be reached in double */
+    fl->p = hl_flow_order_for(log(fmax(fmin(atol, rtol), HL_FLOW_MIN_RTOL)));
     fl->coef = hl_xcalloc((size_t)n * (fl->p + 1), sizeof *fl->coef);
     fl->zt = hl_xcalloc((size_t)n, sizeof *fl->zt);
+    fl->dz = hl_xcalloc((size_t)n, sizeof *fl->dz);
+    fl->fz = hl_xcalloc((size_t)n, sizeof *fl->fz);
     fl->native_end = NAN;
     *out = fl;
     return HL_OK;
@@ -54,6 +66,8 @@ void hl_flow_free(hl_flow *fl)
         return;
     free(fl->coef);
     free(fl->zt);
+    free(fl->dz);
+    free(fl->fz);
     free(fl);
 }
 
@@ -121,12 +135,38 @@ static void horner(double *z, const double *coef, int n, int p, double h)
     }
 }
 
+/* dz_i = sum_k k c_i[k] h^(k-1), the derivative of the step's polynomial */
+static void horner_derivative(double *dz, const double *coef, int n, int p, double h)
+{
+    for (int i = 0; i < n; i++) {
+        const double *c = coef + (size_t)i * (p + 1);
+        double d = p * c[p];
+        for (int k = p - 1; k >= 1; k--)
+            d = d * h + k * c[k];
+        dz[i] = d;
+    }
+}
+
 static int all_finite(const double *z, int n)
 {
     for (int i = 0; i < n; i++)
         if (!isfinite(z[i]))
             return 0;
     return 1;
+}
+
+/* win[j] = max(win[j], |cw[j]|) for j < nw, and their sum (the maxima
+ * drop NaN; a sum keeps it).  Inlined twice: with nw the constant window
+ * (any order from 6 on, one step of the hot loop) it unrolls. */
+static inline double add_norms(double *win, const double *cw, int nw)
+{
+    double sum = 0;
+    for (int j = 0; j < nw; j++) {
+        double a = fabs(cw[j]);
+        win[j] = a > win[j] ? a : win[j];
+        sum += a;
+    }
+    return sum;
 }
 
 /* One step's coefficients at z, and its size (> 0, maybe +inf). */
@@ -139,19 +179,21 @@ static int step_size(double *h, hl_flow *fl, const double *z, double t, hl_error
     int st = hl_tape_taylor_ode_d(c, p, fl->f, err);
     if (st != HL_OK)
         return st;
-    double n0 = 0, n1 = 0, n2 = 0, sum = 0;
+    const int lo = hl_flow_window_lo(p), nw = p - lo + 1;
+    double n0 = 0, sum = 0, win[HL_FLOW_WINDOW] = {0}; /* the norms of the orders lo..p */
     for (int i = 0; i < n; i++) {
         const double *ci = c + (size_t)i * S;
-        double a0 = fabs(ci[0]), a1 = fabs(ci[p - 1]), a2 = fabs(ci[p]);
+        double a0 = fabs(ci[0]);
         n0 = a0 > n0 ? a0 : n0;
-        n1 = a1 > n1 ? a1 : n1;
-        n2 = a2 > n2 ? a2 : n2;
-        sum += a1 + a2; /* the maxima drop NaN; a sum keeps it */
+        sum += nw == HL_FLOW_WINDOW ? add_norms(win, ci + lo, HL_FLOW_WINDOW)
+                                    : add_norms(win, ci + lo, nw);
     }
     if (!isfinite(sum))
-        n1 = NAN;
-    double ln_eps = fl->rtol * n0 > fl->atol ? fl->ln_rtol + log(n0) : fl->ln_atol;
-    *h = hl_flow_step_for(ln_eps, n1, n2, p);
+        win[nw - 1] = NAN;
+    int relative = fl->rtol * n0 > fl->atol;
+    fl->eps = relative ? fl->rtol * n0 : fl->atol;
+    double ln_eps = relative ? fl->ln_rtol + log(n0) : fl->ln_atol;
+    *h = hl_flow_step_for(&fl->check, fl->eps, ln_eps, win, p);
     if (isnan(*h))
         return hl_error_set(err, HL_EDOM, NULL, -1, 0,
                             "the solution is not finite (Taylor coefficients overflow) at t = %.17g", t);
@@ -161,12 +203,37 @@ static int step_size(double *h, hl_flow *fl, const double *z, double t, hl_error
     return HL_OK;
 }
 
+/* A step that the window of coefficients does not vouch for (see
+ * flow_impl.h):
+ * shorten *h until its defect says the tail past the order is under eps. */
+static int check_step(double *h, hl_flow *fl, double dir, double t, hl_error *err)
+{
+    const int n = fl->n;
+    for (;;) {
+        horner(fl->zt, fl->coef, n, fl->p, dir * *h);
+        horner_derivative(fl->dz, fl->coef, n, fl->p, dir * *h);
+        hl_tape_eval_d(fl->fz, fl->zt, fl->f);
+        double defect = 0;
+        for (int i = 0; i < n; i++) {
+            double d = fabs(fl->dz[i] - fl->fz[i]);
+            defect = d > defect || isnan(d) ? d : defect;
+        }
+        double next = hl_flow_shrink(*h, defect, fl->eps, fl->p);
+        if (next == 0)
+            return HL_OK;
+        if (next <= 4 * DBL_EPSILON * fabs(t) || next < DBL_MIN)
+            return hl_error_set(err, HL_ENOCONV, NULL, -1, 0,
+                                "step size underflow (h = %g) at t = %.17g", next, t);
+        *h = next;
+    }
+}
+
 /* Integrate from (thi + tlo, z) to tend, calling fn at ts[0..n-1]. */
 static int drive(hl_flow *fl, double *thi, double *tlo, double *z, double tend, const double *ts,
                  int nts, hl_flow_fn fn, void *arg, hl_error *err)
 {
     const double dir = tend >= *thi ? 1 : -1;
-    int j = 0, st;
+    int j = 0, st, first = 1;
     for (;;) {
         for (; j < nts && dir * ((ts[j] - *thi) - *tlo) <= 0; j++)
             if ((st = fn(ts[j], z, arg)) != 0)
@@ -177,9 +244,14 @@ static int drive(hl_flow *fl, double *thi, double *tlo, double *z, double tend, 
         double h;
         if ((st = step_size(&h, fl, z, *thi, err)) != HL_OK)
             return st;
-        int last = h >= rem;
-        if (last)
+        if (h > rem)
             h = rem;
+        /* the first step too: a run that starts near a point of symmetry
+         * sees tiny orders, not vanishing ones (flow_impl.h) */
+        if ((fl->check || first) && (st = check_step(&h, fl, dir, *thi, err)) != HL_OK)
+            return st;
+        first = 0;
+        int last = h == rem;
         for (double tau; j < nts && (tau = dir * ((ts[j] - *thi) - *tlo)) <= h; j++) {
             horner(fl->zt, fl->coef, fl->n, fl->p, dir * tau);
             if ((st = fn(ts[j], fl->zt, arg)) != 0)

@@ -16,6 +16,9 @@ struct hl_flow_arb {
     double ln_tol;  /* -digits * ln 10 */
     arb_ptr coef;   /* n * (p+1) */
     arb_ptr zt;     /* n */
+    arb_ptr dz, fz; /* n each: P'(h) and f(P(h)), to check a step */
+    double ln_eps;  /* the log of the current step's tolerance */
+    int check;      /* the current step is to be checked (hl_flow_shrink) */
     arb_t h, tau, rem;
     long nsteps;
 };
@@ -40,6 +43,8 @@ int hl_flow_arb_new(hl_flow_arb **out, hl_tape *f, double digits, hl_error *err)
     fl->prec = (slong)ceil(digits * log2(10.0)) + 32;
     fl->coef = _arb_vec_init((slong)n * (fl->p + 1));
     fl->zt = _arb_vec_init(n);
+    fl->dz = _arb_vec_init(n);
+    fl->fz = _arb_vec_init(n);
     arb_init(fl->h);
     arb_init(fl->tau);
     arb_init(fl->rem);
@@ -53,6 +58,8 @@ void hl_flow_arb_free(hl_flow_arb *fl)
         return;
     _arb_vec_clear(fl->coef, (slong)fl->n * (fl->p + 1));
     _arb_vec_clear(fl->zt, fl->n);
+    _arb_vec_clear(fl->dz, fl->n);
+    _arb_vec_clear(fl->fz, fl->n);
     arb_clear(fl->h);
     arb_clear(fl->tau);
     arb_clear(fl->rem);
@@ -82,6 +89,20 @@ static void horner(arb_ptr z, const hl_flow_arb *fl, const arb_t h)
     }
 }
 
+/* dz_i = sum_k k c_i[k] h^(k-1), the derivative of the step's polynomial */
+static void horner_derivative(arb_ptr dz, const hl_flow_arb *fl, const arb_t h)
+{
+    const int S = fl->p + 1;
+    for (int i = 0; i < fl->n; i++) {
+        arb_srcptr c = fl->coef + (size_t)i * S;
+        arb_mul_si(dz + i, c + fl->p, fl->p, fl->prec);
+        for (int k = fl->p - 1; k >= 1; k--) {
+            arb_mul(dz + i, dz + i, h, fl->prec);
+            arb_addmul_si(dz + i, c + k, k, fl->prec);
+        }
+    }
+}
+
 static int step_size(double *h, hl_flow_arb *fl, arb_srcptr z, const arb_t t, hl_error *err)
 {
     const int n = fl->n, p = fl->p, S = p + 1;
@@ -90,16 +111,20 @@ static int step_size(double *h, hl_flow_arb *fl, arb_srcptr z, const arb_t t, hl
     int st = hl_tape_taylor_ode_arb(fl->coef, p, fl->prec, fl->f, err);
     if (st != HL_OK)
         return st;
-    double n0 = 0, n1 = 0, n2 = 0;
+    const int lo = hl_flow_window_lo(p), nw = p - lo + 1;
+    double n0 = 0, win[HL_FLOW_WINDOW] = {0}; /* the norms of the orders lo..p */
     int finite = 1;
     for (int i = 0; i < n; i++) {
-        arb_srcptr c = fl->coef + (size_t)i * S;
-        finite &= arb_is_finite(c + p - 1) && arb_is_finite(c + p);
+        arb_srcptr c = fl->coef + (size_t)i * S, cw = c + lo;
         n0 = fmax(n0, fabs(mid_d(c)));
-        n1 = fmax(n1, fabs(mid_d(c + p - 1)));
-        n2 = fmax(n2, fabs(mid_d(c + p)));
+        for (int j = 0; j < nw; j++) {
+            finite &= arb_is_finite(cw + j);
+            win[j] = fmax(win[j], fabs(mid_d(cw + j)));
+        }
     }
-    *h = finite ? hl_flow_step_for(fl->ln_tol + (n0 > 1 ? log(n0) : 0), n1, n2, p) : NAN;
+    fl->ln_eps = fl->ln_tol + (n0 > 1 ? log(n0) : 0);
+    /* exp may underflow: see hl_flow_step_for */
+    *h = finite ? hl_flow_step_for(&fl->check, exp(fl->ln_eps), fl->ln_eps, win, p) : NAN;
     if (isnan(*h))
         return hl_error_set(err, HL_EDOM, NULL, -1, 0,
                             "the solution is not finite (Taylor coefficients overflow) at t = %.17g",
@@ -110,12 +135,48 @@ static int step_size(double *h, hl_flow_arb *fl, arb_srcptr z, const arb_t t, hl
     return HL_OK;
 }
 
+/* A step that the window of coefficients does not vouch for (see
+ * flow_impl.h):
+ * shorten fl->h (signed by dir) until its defect says the tail past the
+ * order is under eps. */
+static int check_step(hl_flow_arb *fl, int dir, const arb_t t, hl_error *err)
+{
+    arb_t inv_eps; /* in Arb: eps itself may be below double's range */
+    arb_init(inv_eps);
+    arb_set_d(inv_eps, -fl->ln_eps);
+    arb_exp(inv_eps, inv_eps, 64);
+    int st = HL_OK;
+    for (;;) {
+        horner(fl->zt, fl, fl->h);
+        horner_derivative(fl->dz, fl, fl->h);
+        hl_tape_eval_arb(fl->fz, fl->zt, fl->prec, fl->f);
+        double defect = 0; /* in units of eps */
+        for (int i = 0; i < fl->n; i++) {
+            arb_sub(fl->tau, fl->dz + i, fl->fz + i, fl->prec);
+            arb_mul(fl->tau, fl->tau, inv_eps, fl->prec);
+            double d = arb_is_finite(fl->tau) ? fabs(mid_d(fl->tau)) : INFINITY;
+            defect = fmax(defect, d);
+        }
+        double h = fabs(mid_d(fl->h)), next = hl_flow_shrink(h, defect, 1, fl->p);
+        if (next == 0)
+            break;
+        if (!(next > 1e-300) || next < ldexp(fabs(mid_d(t)), -(int)fl->prec + 4)) {
+            st = hl_error_set(err, HL_ENOCONV, NULL, -1, 0,
+                              "step size underflow (h = %g) at t = %.17g", next, mid_d(t));
+            break;
+        }
+        arb_set_d(fl->h, dir * next);
+    }
+    arb_clear(inv_eps);
+    return st;
+}
+
 static int drive(hl_flow_arb *fl, arb_t t, arb_ptr z, const arb_t tend, arb_srcptr ts, int nts,
                  hl_flow_arb_fn fn, void *arg, hl_error *err)
 {
     const slong prec = fl->prec;
     const int dir = arf_cmp(arb_midref(tend), arb_midref(t)) >= 0 ? 1 : -1;
-    int j = 0, st;
+    int j = 0, st, first = 1;
     for (;;) {
         for (; j < nts; j++) {
             arb_sub(fl->tau, ts + j, t, prec);
@@ -137,6 +198,16 @@ static int drive(hl_flow_arb *fl, arb_t t, arb_ptr z, const arb_t tend, arb_srcp
             arb_set(fl->h, fl->rem);
         else
             arb_set_d(fl->h, hd);
+        if (fl->check || first) { /* the first step too: see flow.c */
+            if (dir < 0)
+                arb_neg(fl->h, fl->h);
+            if ((st = check_step(fl, dir, t, err)) != HL_OK)
+                return st;
+            if (dir < 0)
+                arb_neg(fl->h, fl->h);
+            last = arb_equal(fl->h, fl->rem);
+            first = 0;
+        }
         for (; j < nts; j++) {
             arb_sub(fl->tau, ts + j, t, prec); /* signed offset into the step */
             arb_get_mid_arb(fl->tau, fl->tau);

@@ -1,6 +1,27 @@
 /* The driver logic shared by the double and the Arb Taylor integrators:
- * order from the tolerance and step from the last two coefficient norms
- * (Jorba & Zou 2005, section 3.2). */
+ * order from the tolerance, and the step from the coefficient norms
+ * N_k = max_i |z_i^[k]|.
+ *
+ * Jorba & Zou (2005, section 3.2) take the step at which the terms of the
+ * last two orders are eps:  h = min_{k=p-1,p} (eps/N_k)^(1/k) e^(-0.7/(p-1)).
+ * NOTE: that reads the tail of the series from two coefficients, and at
+ * points of symmetry whole orders vanish: from q = 0 in the well q^4/4, q(t)
+ * has terms only at the orders 1 mod 4 and p(t) at 0 mod 4, so N_{p-1} and
+ * N_p can both be 0 (an unbounded step), or tiny near q = 0 (a step far too
+ * long).  So the step also keeps the terms of the orders below, back to
+ * p - HL_FLOW_WINDOW + 1, under eps e^(3.5 (p-1-k)): at Jorba & Zou's step a
+ * converging series falls by about e^2 an order, so this binds only where
+ * an order below is out of line with the last two (an ordinary orbit keeps
+ * its step), and then the terms past p, which repeat the pattern, stay
+ * near eps.  Where the orders below do bind, and where every order of the
+ * window is 0 (q^10/10 from q = 0, or a series that terminates: a free
+ * fall), the coefficients are not trusted alone: the driver checks the
+ * step itself by its defect (hl_flow_shrink).
+ * NOTE: a pattern of vanishing orders longer than the window, near (not
+ * at) its point of symmetry, is not seen: q^10/10 near q = 0, where the
+ * orders 12..19 are tiny.  The driver checks the first step of a run
+ * always, since runs start at such points; an orbit that passes within
+ * 1e-6 of one later may lose accuracy there. */
 #ifndef HAMLIE_FLOW_IMPL_H
 #define HAMLIE_FLOW_IMPL_H
 
@@ -8,29 +29,111 @@
 
 #define HL_FLOW_MAX_ORDER 1000
 
-/* p = ceil(-ln(tol)/2) + 1 from ln(tol) < 0; at least 2. */
+/* The orders the step reads: the last HL_FLOW_WINDOW, p-5..p.  Six see a
+ * pattern of up to five vanishing orders (q^6/6 from q = 0 has four). */
+#define HL_FLOW_WINDOW 6
+
+/* The orders below p-1 may exceed eps by e^HL_FLOW_SLACK an order (see
+ * above): 3.5 leaves the steps of the pendulum, Henon-Heiles and Kepler as
+ * Jorba & Zou chose them, and the quartic from q = 0 within its tolerance. */
+#define HL_FLOW_SLACK 3.5
+
+/* p = ceil(-ln(tol)/2) + 1 from ln(tol) < 0; at least 2.  NOTE: not at
+ * least the window: an order above Jorba & Zou's takes steps nearer the
+ * radius of convergence, where the slack below is too loose (order 10 at
+ * tol 1e-3 lost the energy of the sextic from q = 0). */
 static inline int hl_flow_order_for(double ln_tol)
 {
     double p = ceil(-ln_tol / 2) + 1;
     return p < 2 ? 2 : p > HL_FLOW_MAX_ORDER + 1 ? HL_FLOW_MAX_ORDER + 1 : (int)p;
 }
 
-/* h = min_{k=p-1,p} (eps/|z^[k]|)^(1/k) * exp(-0.7/(p-1)) with ln_eps =
- * ln(eps); +inf when both norms are 0 (the series terminates), NaN when a
- * norm is not finite. */
-static inline double hl_flow_step_for(double ln_eps, double norm_pm1, double norm_p, int p)
+/* Below this order every step is checked by its defect (hl_flow_shrink):
+ * a low order's window sees too little of the series (at order 4, tol
+ * 1e-2, the sextic and octic wells took steps that lost all their energy,
+ * from any point).  Tolerances above 1.5e-8 only. */
+#define HL_FLOW_CHECK_BELOW 10
+
+/* The lowest order of the window (order 0, the state, is not in it). */
+static inline int hl_flow_window_lo(int p)
 {
-    if (!isfinite(norm_pm1) || !isfinite(norm_p))
+    return p - HL_FLOW_WINDOW + 1 < 1 ? 1 : p - HL_FLOW_WINDOW + 1;
+}
+
+/* x^k for k >= 0 by squaring */
+static inline double hl_flow_powi(double x, int k)
+{
+    double r = 1;
+    for (; k > 0; k >>= 1, x *= x)
+        if (k & 1)
+            r *= x;
+    return r;
+}
+
+/* The step from win[k - lo] = N_k, k = lo..p (lo = hl_flow_window_lo), for the
+ * tolerance eps and ln_eps = ln(eps) (eps may underflow where ln_eps does
+ * not: then the test below fails and the log domain decides): > 0; +inf
+ * when every N_k of the window is 0; NaN when one is not finite.  *check
+ * = 1 if the step is to be checked (hl_flow_shrink), else 0. */
+static inline double hl_flow_step_for(int *check, double eps, double ln_eps, const double *win,
+                                      int p)
+{
+    const int lo = hl_flow_window_lo(p);
+    double sum = 0;
+    for (int k = lo; k <= p; k++)
+        sum += win[k - lo]; /* NaN or inf if a norm is */
+    *check = 1; /* unless the window vouches for the step */
+    if (!isfinite(sum))
         return NAN;
-    /* in the log domain, so that one exp gives the step */
+    if (sum == 0)
+        return INFINITY;
+    /* Jorba & Zou, in the log domain so that one exp gives the step */
     double e = INFINITY;
-    if (norm_pm1 > 0)
-        e = (ln_eps - log(norm_pm1)) / (p - 1);
-    if (norm_p > 0) {
-        double e2 = (ln_eps - log(norm_p)) / p;
-        e = e2 < e ? e2 : e;
+    for (int k = p - 1; k <= p; k++)
+        if (win[k - lo] > 0)
+            e = fmin(e, (ln_eps - log(win[k - lo])) / k);
+    const double fudge = -0.7 / (p - 1);
+    double h = exp(e + fudge);
+    /* the orders below: N_k h^k <= eps e^(3.5 (p-1-k)).  First all at once,
+     * without logs or branches (most steps end here)... */
+    double worst = 0, pw = hl_flow_powi(h, lo);
+    double c = lo > 1 ? exp(-HL_FLOW_SLACK * (HL_FLOW_WINDOW - 2)) : exp(-HL_FLOW_SLACK * (p - 2));
+    for (int k = lo; k <= p - 2; k++, pw *= h, c *= exp(HL_FLOW_SLACK)) {
+        double t = win[k - lo] * pw * c; /* NaN if N_k = 0 and h^k = inf: no bound */
+        worst = t > worst ? t : worst;
     }
-    return e == INFINITY ? INFINITY : exp(e - 0.7 / (p - 1));
+    *check = p < HL_FLOW_CHECK_BELOW;
+    if (worst <= eps && h < INFINITY)
+        return h;
+    /* ...else one by one, solved where it fails; a shorter h keeps the
+     * orders already passed */
+    double bound = eps * exp(HL_FLOW_SLACK), hk = hl_flow_powi(h, p - 2), inv_h = 1 / h;
+    for (int k = p - 2; k >= lo; k--, bound *= exp(HL_FLOW_SLACK), hk *= inv_h) {
+        if (win[k - lo] > 0 && !(win[k - lo] * hk <= bound)) { /* NaN (h = inf) fails too */
+            double ek = (ln_eps + HL_FLOW_SLACK * (p - 1 - k) - log(win[k - lo])) / k;
+            if (ek < e) { /* not if eps underflowed: the test failed wrongly */
+                *check = 1;
+                e = ek;
+                h = exp(e + fudge);
+                hk = hl_flow_powi(h, k);
+                inv_h = 1 / h;
+            }
+        }
+    }
+    return h;
+}
+
+/* A step that the window does not vouch for is checked by its defect,
+ * d = P'(h) - f(P(h)) for the step's polynomial P: the tail past p is
+ * about h |d|_inf / (p+1) (its first term's derivative dominates).
+ * Returns 0 to take h, else the next, shorter h to try. */
+static inline double hl_flow_shrink(double h, double defect, double eps, int p)
+{
+    double err = h * defect / (p + 1);
+    if (err <= eps)
+        return 0;
+    double f = isfinite(err) ? 0.9 * pow(eps / err, 1.0 / (p + 1)) : 0.1;
+    return h * (f < 0.1 ? 0.1 : f > 0.9 ? 0.9 : f);
 }
 
 #endif
