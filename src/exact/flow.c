@@ -630,14 +630,6 @@ void hl_exact_flow_gradient_(double *v, const double *z, hl_exact_flow *f)
     hl_tape_eval_d(v, z, f->vf);
 }
 
-/* At an equilibrium (grad H = 0 exactly) the flow is the identity. */
-static int at_equilibrium(const double *z, hl_exact_flow *f)
-{
-    double v[2];
-    hl_exact_flow_gradient_(v, z, f);
-    return v[0] == 0 && v[1] == 0;
-}
-
 /* The Jacobian J of (dH/dp, -dH/dq) at z, row-major, by Taylor mode. */
 static void jacobian(double *J, const double *z, hl_exact_flow *f)
 {
@@ -648,39 +640,50 @@ static void jacobian(double *J, const double *z, hl_exact_flow *f)
     J[0] = dq[1], J[1] = dp[1], J[2] = dq[3], J[3] = dp[3];
 }
 
-/* An orbit too small to tabulate (its Taylor coefficients and distances
- * underflow) but whose vector field is linear to rounding over it: about
- * a centre the flow is then the linearised flow about the equilibrium ze,
- * exactly the limit of small orbits; about a saddle, z is within rounding
- * of the separatrix.  TINY_CENTRE or TINY_SADDLE, and ze, J, if z is on
- * such an orbit: J the same to rounding at z, ze and the mirror image
- * 2 ze - z (so the field's second derivatives do not act on it).  Tried
- * only where grad H is small. */
-enum { TINY_NO, TINY_CENTRE, TINY_SADDLE };
-static int tiny_orbit(double *ze, double *J, const double *z, hl_exact_flow *f)
+/* What z is to the flow:
+ *   POINT_EQUILIBRIUM  grad H = 0 exactly: the flow is the identity;
+ *   POINT_TINY         on an orbit about a centre ze too small to tabulate
+ *                      (its Taylor coefficients and distances underflow)
+ *                      but over which the vector field is linear to
+ *                      rounding: the flow is the linearised flow, exactly
+ *                      the limit of small orbits;
+ *   POINT_NEAR_SADDLE  the same about a saddle: z is within rounding of the
+ *                      separatrix;
+ *   POINT_ORBIT        an orbit to tabulate.
+ * Linear to rounding: J the same to rounding at z, ze and the mirror image
+ * 2 ze - z (so the field's second derivatives do not act on the orbit);
+ * tried only where grad H is small.  ze and J are set for the first three
+ * (ze = z, J = 0 at an equilibrium). */
+enum { POINT_ORBIT, POINT_EQUILIBRIUM, POINT_TINY, POINT_NEAR_SADDLE };
+static int classify(double *ze, double *J, const double *z, hl_exact_flow *f)
 {
-    double v[2], Jm[4];
+    double v[2], Jm[4], Je[4];
     hl_exact_flow_gradient_(v, z, f);
+    if (v[0] == 0 && v[1] == 0) {
+        ze[0] = z[0], ze[1] = z[1];
+        memset(J, 0, 4 * sizeof *J);
+        return POINT_EQUILIBRIUM;
+    }
     if (!(fmax(fabs(v[0]), fabs(v[1])) < 1e-6 * fmax(1, fmax(fabs(z[0]), fabs(z[1])))))
-        return 0;
+        return POINT_ORBIT;
     jacobian(J, z, f);
     double det = J[0] * J[3] - J[1] * J[2];
     if (!(det != 0) || !isfinite(det))
-        return 0;
+        return POINT_ORBIT;
     /* one Newton step to grad H = 0: z - J^-1 v */
     ze[0] = z[0] - (J[3] * v[0] - J[1] * v[1]) / det;
     ze[1] = z[1] - (-J[2] * v[0] + J[0] * v[1]) / det;
-    double zm[2] = {2 * ze[0] - z[0], 2 * ze[1] - z[1]}, Je[4];
+    double zm[2] = {2 * ze[0] - z[0], 2 * ze[1] - z[1]};
     jacobian(Je, ze, f);
     jacobian(Jm, zm, f);
     double n = fmax(fmax(fabs(J[0]), fabs(J[1])), fmax(fabs(J[2]), fabs(J[3])));
     for (int i = 0; i < 4; i++)
         if (!(fabs(Je[i] - J[i]) <= DBL_EPSILON * n && fabs(Jm[i] - J[i]) <= DBL_EPSILON * n))
-            return TINY_NO;
-    return det > 0 ? TINY_CENTRE : TINY_SADDLE;
+            return POINT_ORBIT;
+    return det > 0 ? POINT_TINY : POINT_NEAR_SADDLE;
 }
 
-static int tiny_saddle_error(const double *z, hl_error *err)
+static int near_saddle_error(const double *z, hl_error *err)
 {
     return hl_error_set(err, HL_EDOM, NULL, -1, 0,
                         "separatrix: the point q = %.17g, p = %.17g is within rounding of an "
@@ -688,16 +691,11 @@ static int tiny_saddle_error(const double *z, hl_error *err)
                         z[0], z[1]);
 }
 
-/* z advanced by dt on the linearised flow about ze: exp(dt J) = C I + S J
- * (J traceless, J^2 = -det J I): C, S = cos(w dt), sin(w dt)/w for w^2 =
- * det J > 0, cosh, sinh for det J < 0. */
+/* z advanced by dt on the linearised flow about the centre ze: exp(dt J) =
+ * cos(w dt) I + sin(w dt)/w J (J traceless, J^2 = -w^2 I, w^2 = det J). */
 static void tiny_step(double *z, double dt, const double *ze, const double *J)
 {
-    double det = J[0] * J[3] - J[1] * J[2], w = sqrt(fabs(det)), C, S;
-    if (det > 0)
-        C = cos(w * dt), S = sin(w * dt) / w;
-    else
-        C = cosh(w * dt), S = sinh(w * dt) / w;
+    double w = sqrt(J[0] * J[3] - J[1] * J[2]), C = cos(w * dt), S = sin(w * dt) / w;
     double d[2] = {z[0] - ze[0], z[1] - ze[1]};
     z[0] = ze[0] + C * d[0] + S * (J[0] * d[0] + J[1] * d[1]);
     z[1] = ze[1] + C * d[1] + S * (J[2] * d[0] + J[3] * d[1]);
@@ -706,14 +704,14 @@ static void tiny_step(double *z, double dt, const double *ze, const double *J)
 static int orbit_step(double *z, double dt, hl_exact_flow *f, hl_error *err)
 {
     double ze[2], J[4];
-    if (at_equilibrium(z, f))
+    /* the last output is on the table: no need to ask */
+    int kind = f->have_last && z[0] == f->last[0] && z[1] == f->last[1] ? POINT_ORBIT
+                                                                        : classify(ze, J, z, f);
+    if (kind == POINT_NEAR_SADDLE)
+        return near_saddle_error(z, err);
+    if (kind == POINT_EQUILIBRIUM)
         return HL_OK;
-    int tiny = f->have_last && z[0] == f->last[0] && z[1] == f->last[1]
-                   ? TINY_NO
-                   : tiny_orbit(ze, J, z, f);
-    if (tiny == TINY_SADDLE)
-        return tiny_saddle_error(z, err);
-    if (tiny == TINY_CENTRE) {
+    if (kind == POINT_TINY) {
         tiny_step(z, dt, ze, J);
         return HL_OK;
     }
@@ -761,13 +759,11 @@ static int orbit_series(double *coef, const double *z, int n, hl_exact_flow *f, 
                             "degree %d in time: its series stops at D^%d (asked for D^%d)",
                             ORD, ORD, n);
     double ze[2], J[4];
-    int eq = at_equilibrium(z, f), tiny = eq ? TINY_NO : tiny_orbit(ze, J, z, f);
-    if (tiny == TINY_SADDLE)
-        return tiny_saddle_error(z, err);
-    if (eq || tiny == TINY_CENTRE) { /* J^k (z - ze) / k! */
-        double d[2] = {eq ? 0 : z[0] - ze[0], eq ? 0 : z[1] - ze[1]};
-        if (eq)
-            memset(J, 0, sizeof J);
+    int kind = classify(ze, J, z, f);
+    if (kind == POINT_NEAR_SADDLE)
+        return near_saddle_error(z, err);
+    if (kind != POINT_ORBIT) { /* J^k (z - ze) / k! */
+        double d[2] = {z[0] - ze[0], z[1] - ze[1]};
         coef[0] = z[0];
         coef[1] = z[1];
         for (int k = 1; k <= n; k++) {
@@ -958,15 +954,15 @@ int hl_exact_orbit_(hl_exact_orbit *o, const double *z, hl_exact_flow *f, hl_err
 {
     if (f->linear)
         return hl_error_set(err, HL_EUNSUP, NULL, -1, 0, "a quadratic H has no orbit table");
-    if (at_equilibrium(z, f)) {
+    double ze[2], J[4];
+    int kind = classify(ze, J, z, f);
+    if (kind == POINT_NEAR_SADDLE)
+        return near_saddle_error(z, err);
+    if (kind == POINT_EQUILIBRIUM) {
         *o = (hl_exact_orbit){ORBIT_EQUILIBRIUM, {z[0], z[1]}, 0, equilibrium_period(z, f), 0};
         return HL_OK;
     }
-    double ze[2], J[4];
-    int tiny = tiny_orbit(ze, J, z, f);
-    if (tiny == TINY_SADDLE)
-        return tiny_saddle_error(z, err);
-    if (tiny == TINY_CENTRE) { /* the turning point of the linearised orbit */
+    if (kind == POINT_TINY) { /* the turning point of the linearised orbit */
         double d[2] = {z[0] - ze[0], z[1] - ze[1]};
         double a = hypot(d[0], sqrt(J[1] / -J[2]) * d[1]);
         *o = (hl_exact_orbit){ORBIT_LIBRATION, {ze[0] + a, 0}, 0, equilibrium_period(ze, f),
