@@ -122,27 +122,7 @@ static slong energy_prec(const hl_exact_arb *f)
 /* Newton on H(q, 0) = E from the double turning point qd. */
 static void turning_point(arb_t qt, const arb_t E, double qd, double scale, hl_exact_arb *f)
 {
-    slong prec = energy_prec(f);
-    arb_ptr z = _arb_vec_init(2), v = _arb_vec_init(2);
-    arb_t h, dq;
-    arb_init(h);
-    arb_init(dq);
-    arb_set_d(qt, qd);
-    for (int it = 0; it < 12; it++) {
-        arb_set(z, qt);
-        hl_tape_eval_arb(h, z, prec, f->Ht);
-        hl_tape_eval_arb(v, z, prec, f->vf); /* v[1] = -dH/dq */
-        arb_sub(h, h, E, prec);
-        arb_div(dq, h, v + 1, prec); /* -(H - E)/(dH/dq) */
-        arb_add(qt, qt, dq, prec);
-        arb_get_mid_arb(qt, qt);
-        if (settled(dq, scale, f))
-            break;
-    }
-    _arb_vec_clear(z, 2);
-    _arb_vec_clear(v, 2);
-    arb_clear(h);
-    arb_clear(dq);
+    hl_exact_turning_point_arb_(qt, E, qd, scale, f->fa_digits, energy_prec(f), f->Ht, f->vf);
 }
 
 /* Newton on the event at tau from z0: p(tau) = 0 (libration from a

@@ -19,6 +19,11 @@ typedef struct hl_exact_orbit {
 
 int hl_exact_orbit_(hl_exact_orbit *o, const double *z, hl_exact_flow *f, hl_error *err);
 
+/* Newton on H(q, 0) = E in Arb at prec from qd, until a step is below
+ * 10^-(digits + 2) scale (Ht: H over (q, p); vf: (dH/dp, -dH/dq)). */
+void hl_exact_turning_point_arb_(arb_t qt, const arb_t E, double qd, double scale,
+                                 double digits, slong prec, hl_tape *Ht, hl_tape *vf);
+
 /* (dH/dp, -dH/dq) at z (1 dof). */
 void hl_exact_flow_gradient_(double *v, const double *z, hl_exact_flow *f);
 

@@ -36,7 +36,9 @@ struct hl_exact_flow {
     /* the table: the orbit from its start zs (a turning point of a
      * libration; on a rotation any point, q advancing by Ls a period) */
     int have_tab, kind;
-    double zs[2], Ls, size; /* size: the orbit's extent in q and p */
+    double zs[2], zslo, Ls, size; /* zs[0] + zslo: double-double; size: the
+                                   * orbit's extent in q and p */
+    double escale;          /* its energy scale: the largest p dH/dp / 2 */
     double T, Tlo, hs, hslo; /* period T + Tlo, sample spacing hs + hslo */
     /* the last output, its time since the start (double-double) and
      * winding: stepping again from it needs no search */
@@ -303,6 +305,73 @@ static int trace(trace_end *e, const double *z0, int lap, hl_exact_flow *f, hl_e
     }
 }
 
+/* z = the table's start zs (q in double-double), in Arb. */
+static void start_arb(arb_ptr z, const hl_exact_flow *f)
+{
+    arb_t lo;
+    arb_init(lo);
+    arb_set_d(z + 0, f->zs[0]);
+    arb_set_d(lo, f->zslo);
+    arb_add(z + 0, z + 0, lo, ARF_PREC_EXACT);
+    arb_set_d(z + 1, f->zs[1]);
+    arb_clear(lo);
+}
+
+void hl_exact_turning_point_arb_(arb_t qt, const arb_t E, double qd, double scale,
+                                 double digits, slong prec, hl_tape *Ht, hl_tape *vf)
+{
+    arb_ptr z = _arb_vec_init(2), v = _arb_vec_init(2);
+    arb_t h, dq;
+    arb_init(h);
+    arb_init(dq);
+    arb_set_d(qt, qd);
+    double tol = pow(10.0, -(digits + 2)) * scale;
+    for (int it = 0; it < 12; it++) {
+        arb_set(z, qt);
+        hl_tape_eval_arb(h, z, prec, Ht);
+        hl_tape_eval_arb(v, z, prec, vf); /* v[1] = -dH/dq */
+        arb_sub(h, h, E, prec);
+        arb_div(dq, h, v + 1, prec); /* -(H - E)/(dH/dq) */
+        arb_add(qt, qt, dq, prec);
+        arb_get_mid_arb(qt, qt);
+        if (!(fabs(arf_get_d(arb_midref(dq), ARF_RND_NEAR)) > tol))
+            break;
+    }
+    _arb_vec_clear(z, 2);
+    _arb_vec_clear(v, 2);
+    arb_clear(h);
+    arb_clear(dq);
+}
+
+/* A libration's table starts at the turning point ahead of z0, which the
+ * double trace finds rounded to double: that moves the table's energy by
+ * an ulp of V there, and near a separatrix such an ulp is a large part of
+ * the energy's distance to it (the period grows as its log).  So the start
+ * is refined to double-double, by Newton in Arb on H(q, 0) = H(z0). */
+static void refine_start(const double *z0, double digits, hl_exact_flow *f)
+{
+    slong prec = (slong)ceil(digits * log2(10.0)) + 32;
+    arb_ptr z = _arb_vec_init(2);
+    arb_t E, qt;
+    arb_init(E);
+    arb_init(qt);
+    arb_set_d(z, z0[0]);
+    arb_set_d(z + 1, z0[1]);
+    hl_tape_eval_arb(E, z, prec, f->Ht);
+    hl_exact_turning_point_arb_(qt, E, f->zs[0], f->size, digits, prec, f->Ht, f->vf);
+    double qh = arf_get_d(arb_midref(qt), ARF_RND_NEAR);
+    arb_set_d(E, qh);
+    arb_sub(qt, qt, E, prec);
+    double ql = arf_get_d(arb_midref(qt), ARF_RND_NEAR);
+    if (isfinite(qh) && isfinite(ql)) {
+        f->zs[0] = qh;
+        f->zslo = ql;
+    }
+    _arb_vec_clear(z, 2);
+    arb_clear(E);
+    arb_clear(qt);
+}
+
 /* The period in double-double: one Newton step on the event at tau (p = 0
  * for a libration, q = q_s + L_s for a rotation) from zs, with the state
  * from the Arb integrator at `digits`.  Why: an error of one ulp in T
@@ -322,8 +391,7 @@ static int refine_period(double *T, double *Tlo, double tau0, double digits, hl_
     arb_init(t1);
     arb_init(tau);
     arb_set_d(t1, tau0);
-    arb_set_d(z + 0, f->zs[0]);
-    arb_set_d(z + 1, f->zs[1]);
+    start_arb(z, f);
     st = hl_flow_arb_evolve(fa, t, t1, z, err);
     if (st == HL_OK) {
         hl_tape_eval_arb(dz, z, prec, f->vf);
@@ -389,8 +457,7 @@ static int sample_orbit(double *zs, int n, double digits, hl_exact_flow *f, hl_e
     arb_div_si(h, h, f->M, prec);
     for (int k = 0; k < n; k++)
         arb_mul_si(ts + k, h, k, prec);
-    arb_set_d(z0 + 0, f->zs[0]);
-    arb_set_d(z0 + 1, f->zs[1]);
+    start_arb(z0, f);
     struct sample_arg a = {zs, 0};
     st = hl_flow_arb_run(fa, t0, z0, ts, n, sample_fn, &a, err);
     _arb_vec_clear(ts, n);
@@ -442,12 +509,14 @@ static int build_table(hl_exact_flow *f, const double *z0, hl_error *err)
         return st;
     if (a.event == TRACE_LAP) {
         f->kind = ORBIT_ROTATION;
+        f->zslo = 0;
         f->zs[0] = z0[0];
         f->zs[1] = z0[1];
         f->Ls = a.z[0] - z0[0] > 0 ? f->L : -f->L;
         b = a;
     } else {
         f->kind = ORBIT_LIBRATION;
+        f->zslo = 0;
         f->zs[0] = a.z[0];
         f->zs[1] = 0;
         f->Ls = 0;
@@ -467,6 +536,7 @@ static int build_table(hl_exact_flow *f, const double *z0, hl_error *err)
                             "and there is no exact flow to compute",
                             z0[0], z0[1], b.margin / b.kin);
     f->size = f->kind == ORBIT_ROTATION ? fmax(f->L, b.pmax) : fmax(b.qmax - b.qmin, b.pmax);
+    f->escale = b.kin;
     /* the Arb integrator's tolerance is absolute below |z| = 1: digits
      * enough for 24 of them relative to the orbit's size */
     double zmax = fmax(fmax(fabs(b.qmin), fabs(b.qmax)), b.pmax);
@@ -474,6 +544,8 @@ static int build_table(hl_exact_flow *f, const double *z0, hl_error *err)
     if (!(extra < 300))
         return hl_error_set(err, HL_EDOM, NULL, -1, 0,
                             "orbit too small (size %g) for the table", f->size);
+    if (f->kind == ORBIT_LIBRATION && z0[1] != 0)
+        refine_start(z0, 32 + 2 * extra, f);
     double T = f->kind == ORBIT_ROTATION ? b.t : 2 * b.t, Tlo = 0;
     st = refine_period(&T, &Tlo, f->kind == ORBIT_ROTATION ? T : T / 2, 32 + extra, f, err);
     if (st != HL_OK)
@@ -507,9 +579,12 @@ static double unwind(double *q, const double *z, const hl_exact_flow *f)
     return w;
 }
 
-/* Time since the table's start of the point of the table nearest z = (q, p)
- * (double-double th + lo), and the distance from z to it. */
-static double locate(double *lo, double *dist, double q, double p, const hl_exact_flow *f)
+/* Time since the table's start of the point w of the table nearest
+ * z = (q, p) (double-double th + lo), the distance from z to it, and
+ * H(z) - H(w) to first order, grad H(w) . (z - w) (grad H = (-p', q') on
+ * the orbit): the energy offset without the cancellation of H(z) - H(w). */
+static double locate(double *lo, double *dist, double *dE, double q, double p,
+                     const hl_exact_flow *f)
 {
     int best = 0;
     double bd = INFINITY;
@@ -531,8 +606,9 @@ static double locate(double *lo, double *dist, double q, double p, const hl_exac
         if (!(fabs(ds) > 1e-17 * f->hs))
             break;
     }
-    poly_eval(w, NULL, ck, s);
+    poly_eval(w, dw, ck, s);
     *dist = hypot(w[0] - q, w[1] - p);
+    *dE = -dw[1] * (q - w[0]) + dw[0] * (p - w[1]);
     /* best * (hs + hslo) + s in double-double: the rounding of t alone
      * would bias every step by up to an ulp of the period */
     double ph = best * f->hs, pe = fma(best, f->hs, -ph) + best * f->hslo;
@@ -561,10 +637,16 @@ static void wrap_time(double *uh, double *ul, double *w, const hl_exact_flow *f)
     }
 }
 
-/* Is z on the table's orbit, to rounding? */
-static int on_table(double dist, double q, double p, const hl_exact_flow *f)
+/* Is z on the table's orbit, to rounding?  Its energy within rounding of
+ * the orbit's energy scale: near a saddle, where p is small, orbits of
+ * energies an ulp apart are far apart (dp = dE / p), so distance alone
+ * would reject the table of z's own orbit built from a turning point
+ * rounded to double.  And near it: another part of the same energy level
+ * (the other well of a double well) is not z's orbit. */
+static int on_table(double dist, double dE, double q, double p, const hl_exact_flow *f)
 {
-    return dist <= 64 * DBL_EPSILON * (f->size + fabs(q) + fabs(p));
+    double r = f->size + fabs(q) + fabs(p);
+    return dist <= 1e-8 * r && fabs(dE) <= 64 * DBL_EPSILON * f->escale;
 }
 
 /* z's time since the table's start, th + tl in [0, T + Tlo) (double-double),
@@ -581,12 +663,12 @@ static int orbit_time(double *th, double *tl, double *w, const double *z, hl_exa
     }
     if (!isfinite(z[0]) || !isfinite(z[1]))
         return hl_error_set(err, HL_EDOM, NULL, -1, 0, "the state is not finite");
-    double q, dist = INFINITY;
+    double q, dist = INFINITY, dE;
     for (int pass = 0; pass < 2; pass++) {
         if (f->have_tab) {
             *w = unwind(&q, z, f);
-            *th = locate(tl, &dist, q, z[1], f);
-            if (on_table(dist, q, z[1], f))
+            *th = locate(tl, &dist, &dE, q, z[1], f);
+            if (on_table(dist, dE, q, z[1], f))
                 break;
         }
         if (pass == 1)

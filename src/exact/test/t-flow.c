@@ -310,6 +310,43 @@ static void test_other_wells(void)
     hl_system_free(s);
 }
 
+/* The double well p^2/2 + q^4/4 - q^2/2 just above its barrier (E = p0^2/2
+ * from q = 0): long periods, the orbit creeping over the saddle at q = 0
+ * with p = p0.  Periods from python3 + mpmath at 40 digits, tanh-sinh
+ * quadrature of T = 4 int_0^q+ dq / sqrt(2 (E - V)), q+^2 = 1 + sqrt(1 + 4E),
+ * split at 1e-3, 0.1, 1 (E = mpf(p0)**2/2 of the double p0).  The table
+ * starts at the turning point q+, whose rounding to double alone would
+ * move E by 1e-16 of an energy of 5e-7 (T off by 1e-11); and p is small
+ * where z is: tables of energies an ulp apart are 1e-13 apart there. */
+static void test_double_well_near_barrier(void)
+{
+    static const struct {
+        double p0, T;
+    } cases[] = {{1e-3, 34.5624824606042925909463289884},
+                 {1e-5, 52.9831736637434974350468878638}};
+    const char *H = "p^2/2 + q^4/4 - q^2/2";
+    hl_system *s = sys_new(H);
+    hl_error err;
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        hl_exact_flow *f = flow_new(s);
+        double z[2] = {0, cases[i].p0}, r[2] = {0, cases[i].p0}, T = 0;
+        int st = hl_exact_flow_period(&T, z, f, &err);
+        CHECK_MSG(st == HL_OK, "p0 = %g: %s", cases[i].p0, err.msg);
+        for (int n = 0; n < 40 && st == HL_OK; n++)
+            st = hl_exact_flow_step(z, 0.5, f, &err);
+        CHECK_MSG(st == HL_OK, "p0 = %g: %s", cases[i].p0, err.msg);
+        reference(r, H, 20, 24);
+        double d = fmax(fabs(z[0] - r[0]), fabs(z[1] - r[1]));
+        printf("double well just above the barrier, p0 = %g: T = %.17g (%.2g relative), "
+               "|exact - Arb integrator| at t = 20: %.3g\n",
+               cases[i].p0, T, fabs(T - cases[i].T) / cases[i].T, d);
+        CHECK_MSG(fabs(T - cases[i].T) < 1e-14 * cases[i].T, "p0 = %g: T %.17g", cases[i].p0, T);
+        CHECK_MSG(d < 1e-13, "p0 = %g: %.3g", cases[i].p0, d);
+        hl_exact_flow_free(f);
+    }
+    hl_system_free(s);
+}
+
 static void test_pendulum(void)
 {
     hl_error err;
@@ -419,6 +456,7 @@ int main(void)
     test_pendulum();
     test_pendulum_closed_forms();
     test_other_wells();
+    test_double_well_near_barrier();
     test_morse_quartic();
     flint_cleanup();
     return HL_TEST_END();
