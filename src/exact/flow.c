@@ -531,9 +531,10 @@ static int build_table(hl_exact_flow *f, const double *z0, hl_error *err)
     if (b.margin <= 0x1p-40 * b.kin)
         return hl_error_set(err, HL_EDOM, NULL, -1, 0,
                             "separatrix: the orbit through q = %.17g, p = %.17g is within "
-                            "rounding of an unstable equilibrium's energy (%.2g of its own "
-                            "scale): its period is infinite, or too long to tell from rounding, "
-                            "and there is no exact flow to compute",
+                            "rounding (%.2g of its energy scale) of the energy of an unstable "
+                            "equilibrium or of the potential's top at infinity: its period is "
+                            "infinite, or too long to tell from rounding, and there is no "
+                            "exact flow to compute",
                             z0[0], z0[1], b.margin / b.kin);
     f->size = f->kind == ORBIT_ROTATION ? fmax(f->L, b.pmax) : fmax(b.qmax - b.qmin, b.pmax);
     f->escale = b.kin;

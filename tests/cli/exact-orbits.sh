@@ -10,7 +10,7 @@
 #   the separatrix itself refused (exit 2, nothing on stdout);
 #   quartic, Morse and double-well oscillators against the Taylor integrator
 #   (run --scheme lie --tol 1e-15) at every output time; a Morse escape
-#   refused.
+#   and Morse at E = 1 refused, just below it the period 2 pi/sqrt(2(1-E)).
 # usage (from the repo root): bash tests/cli/exact-orbits.sh path/to/hamlie
 set -u
 HAMLIE=${1:?usage: exact-orbits.sh path/to/hamlie}
@@ -99,6 +99,12 @@ err_has "separatrix"
 run 2 exact -H 'p^2/2 + (1-exp(-q))^2' --init q=0,p=1.5
 err_has "unbounded orbit"
 [ ! -s "$tmp/out" ] && ok || bad "output on a failure"
+# Morse at E = 1 to rounding (p = sqrt 2): the period diverges there too
+run 2 exact -H 'p^2/2 + (1-exp(-q))^2' --init q=0,p=1.4142135623730951
+err_has "separatrix"
+# just below, E = 1 - 1.75e-8: the period 2 pi / sqrt(2 (1 - E)), 33587
+run 0 exact -H 'p^2/2 + (1-exp(-q))^2' --init q=0,p=1.41421355
+period_is "2 * pi / sqrt(2 * (1 - mpf(1.41421355)**2 / 2))" 1e-12
 
 # other systems against the Taylor integrator at every output time
 same_as_lie() { # H init tol
