@@ -79,6 +79,11 @@ run 0 exact -H "$PEND" --init q=3.14,p=0
 period_is "4 * ellipk(sin(mpf(3.14) / 2)**2)" 1e-13
 run 0 exact -H "$PEND" --init q=0,p=2.5
 period_is "2 * ellipk(1 / mpf(1.25)**2) / mpf(1.25)" 1e-14
+# 1e-8 from the separatrix on either side
+run 0 exact -H "$PEND" --init q=0,p=1.99999999
+period_is "4 * ellipk((mpf(1.99999999) / 2)**2)" 1e-14
+run 0 exact -H "$PEND" --init q=0,p=2.00000001
+period_is "2 * ellipk(1 / (mpf(2.00000001) / 2)**2) / (mpf(2.00000001) / 2)" 1e-14
 run 0 exact -H "$PEND" --init q=0,p=0
 period_is "2 * pi" 1e-15
 has_text "Q = 0 P = 0"
