@@ -26,10 +26,11 @@ struct hl_exact_arb {
     hl_exact_flow *fd; /* the double exact flow, for the estimates */
     double digits, fa_digits;
     slong prec;
-    /* the orbit whose period T is known: its energy E (to escale), kind
-     * and q's advance Ls a period (rotations) */
+    /* the orbit whose period T is known: its energy E (to escale), the
+     * double flow's start of it (o.zs) and q's advance a period o.Ls
+     * (rotations: two at one energy go opposite ways), kind, and Ls in Arb */
     arb_t E, T, Ls;
-    double escale;
+    double escale, zs_key, Ls_key;
     int have_T, kind;
 };
 
@@ -249,11 +250,13 @@ int hl_exact_arb_period(arb_t T, arb_srcptr z, hl_exact_arb *f, hl_error *err)
     hl_exact_flow_gradient_(v, zd, f->fd);
     double escale = fmax(fabs(v[0]), fabs(v[1])) * o.size;
     if (!f->have_T || f->kind != o.kind || o.kind == ORBIT_EQUILIBRIUM ||
-        !settled(d, fmin(escale, f->escale), f)) {
+        f->zs_key != o.zs[0] || f->Ls_key != o.Ls || !settled(d, fmin(escale, f->escale), f)) {
         f->have_T = 0;
         st = orbit_period(z, E, &o, f, err);
         f->have_T = st == HL_OK;
         f->escale = escale;
+        f->zs_key = o.zs[0];
+        f->Ls_key = o.Ls;
         arb_set(f->E, E);
     }
     if (st == HL_OK)
