@@ -48,16 +48,11 @@ struct hl_exact_flow {
     double *C; /* M + 1 pieces x 2 variables x NC coefficients */
 };
 
-static double H_tape(hl_tape *Ht, const double *z)
-{
-    double h;
-    hl_tape_eval_d(&h, z, Ht);
-    return h;
-}
-
 static double H_at(hl_exact_flow *f, const double *z)
 {
-    return H_tape(f->Ht, z);
+    double h;
+    hl_tape_eval_d(&h, z, f->Ht);
+    return h;
 }
 
 /* ---- linear ------------------------------------------------------------ */
@@ -492,14 +487,13 @@ static int tabulate(double digits, hl_exact_flow *f, hl_error *err)
     return st;
 }
 
-/* Build the table of the orbit through z0 (not an equilibrium): its start
- * (a turning point, or z0 itself on a rotation), period and pieces. */
-static int build_table(hl_exact_flow *f, const double *z0, hl_error *err)
+/* The orbit through z0 (not an equilibrium): its kind and start (a
+ * turning point, or z0 itself on a rotation) in f, and in b the trace of
+ * half a libration's period from its start, or of a rotation's lap. */
+static int find_orbit(trace_end *b, const double *z0, hl_exact_flow *f, hl_error *err)
 {
-    trace_end a, b;
+    trace_end a;
     int st = HL_OK;
-    f->have_tab = 0;
-    f->have_last = 0;
     a.event = TRACE_TURN;
     a.z[0] = z0[0];
     a.z[1] = 0;
@@ -513,29 +507,42 @@ static int build_table(hl_exact_flow *f, const double *z0, hl_error *err)
         f->zs[0] = z0[0];
         f->zs[1] = z0[1];
         f->Ls = a.z[0] - z0[0] > 0 ? f->L : -f->L;
-        b = a;
+        *b = a;
     } else {
         f->kind = ORBIT_LIBRATION;
         f->zslo = 0;
         f->zs[0] = a.z[0];
         f->zs[1] = 0;
         f->Ls = 0;
-        st = trace(&b, f->zs, 0, f, err); /* half a period */
+        st = trace(b, f->zs, 0, f, err); /* half a period */
         if (st != HL_OK)
             return st;
         if (z0[1] != 0)
-            b.margin = fmin(b.margin, a.margin);
+            b->margin = fmin(b->margin, a.margin);
     }
     /* 2^-40: closer than that, the rounding of the state alone moves the
      * period by more than 1e-4 of itself (T grows as log(1 / margin)) */
-    if (b.margin <= 0x1p-40 * b.kin)
+    if (b->margin <= 0x1p-40 * b->kin)
         return hl_error_set(err, HL_EDOM, NULL, -1, 0,
                             "separatrix: the orbit through q = %.17g, p = %.17g is within "
                             "rounding (%.2g of its energy scale) of the energy of an unstable "
                             "equilibrium or of the potential's top at infinity: its period is "
                             "infinite, or too long to tell from rounding, and there is no "
                             "exact flow to compute",
-                            z0[0], z0[1], b.margin / b.kin);
+                            z0[0], z0[1], b->margin / b->kin);
+    return HL_OK;
+}
+
+/* Build the table of the orbit through z0 (not an equilibrium): its start,
+ * period and pieces. */
+static int build_table(hl_exact_flow *f, const double *z0, hl_error *err)
+{
+    trace_end b;
+    f->have_tab = 0;
+    f->have_last = 0;
+    int st = find_orbit(&b, z0, f, err);
+    if (st != HL_OK)
+        return st;
     f->size = f->kind == ORBIT_ROTATION ? fmax(f->L, b.pmax) : fmax(b.qmax - b.qmin, b.pmax);
     f->escale = b.kin;
     /* the Arb integrator's tolerance is absolute below |z| = 1: digits
