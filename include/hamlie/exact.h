@@ -7,19 +7,32 @@
  *                         constant; the step is the matrix exponential of
  *                         [[A, b], [0, 0]] times dt, computed with Arb
  *                         (arb_mat_exp, 128 bits) and rounded to double.
- *   1 dof, bounded orbit: the orbit of the current energy E is tabulated
- *                         once over one period T(E) (turning point by root
- *                         finding on H(q,0) = E, period and samples by the
- *                         Taylor integrator's polynomials, see exact.c);
- *                         a step finds the time t(q,p) since the turning
- *                         point on that table (the angle is 2 pi t / T),
- *                         advances it by dt mod T and maps back.  The table
- *                         is rebuilt when the energy of z changes.
+ *   1 dof:                the orbit through z is tabulated once over one
+ *                         period T (Taylor polynomials of the flow at
+ *                         samples, see flow.c); a step finds the time
+ *                         t(q,p) since the table's start (the angle is
+ *                         2 pi t / T), advances it by dt mod T and maps
+ *                         back.  The orbit is found by following the flow
+ *                         from z: a libration (bounded, in the well z is
+ *                         in) between the turning points on either side of
+ *                         z; a rotation when H is 2 pi-periodic in q and q
+ *                         advances by 2 pi without turning (q then grows
+ *                         by 2 pi a period); the table is rebuilt when z is
+ *                         not on the current one, to rounding of the
+ *                         orbit's own size (so tiny orbits are told apart).
+ *                         An equilibrium (grad H = 0) stays where it is;
+ *                         an orbit so small that the vector field is linear
+ *                         to rounding over it follows the linearised flow,
+ *                         the limit of small orbits.
  *
  * Requirements of the 1-dof construction: H(q,p) = H(q,-p) (time-reversal
- * symmetric, true for p^2/2m + V(q)), E below the barrier on both sides;
- * unbounded orbits (rotation of the pendulum, escape over a Morse well) and
- * separatrices are refused with HL_EDOM naming the reason.
+ * symmetric, true for p^2/2m + V(q)).  Refused with HL_EDOM naming the
+ * reason: unbounded orbits (an escape over a Morse well), and the
+ * separatrix — an orbit whose energy is within rounding (2^-40 of the
+ * orbit's energy scale) of an unstable equilibrium's, where the period is
+ * infinite or cannot be told from rounding.  Near it (the pendulum from
+ * q = 3.14, or p = 1.99 at q = 0) the orbits are computed, their long
+ * periods included.
  */
 #ifndef HAMLIE_EXACT_H
 #define HAMLIE_EXACT_H
@@ -104,17 +117,24 @@ int hl_exact_flow_series(double *coef, const double *z, int n, hl_exact_flow *f,
 /* 1 if the flow is the linear (matrix exponential) kind. */
 int hl_exact_flow_is_linear(const hl_exact_flow *f);
 
-/* Period T(E) of the orbit through z (1-dof kind; the quadratic kind gives
- * HL_EUNSUP).  Builds the orbit table for that energy. */
+/* Period T of the orbit through z (1-dof kind; the quadratic kind gives
+ * HL_EUNSUP): a rotation's is the time q takes to advance by 2 pi; at a
+ * stable equilibrium (and on the orbits small enough for the linearised
+ * flow), the limit of small orbits 2 pi / omega; at an unstable one,
+ * +inf.  Builds the orbit table for that orbit. */
 int hl_exact_flow_period(double *T, const double *z, hl_exact_flow *f, hl_error *err);
 
 /* ---- the 1-dof exact scheme in high precision --------------------------
- * The period T(E) of the orbit through z in Arb at about `digits` digits
+ * The period T of the orbit through z in Arb at about `digits` digits
  * (16..1000), and z advanced by dt of any size in the time of less than a
- * period: psi_dt(z) = the Arb Taylor integrator (flow.h) over dt mod T.  T
- * comes from Newton's method on the turning point (H(q,0) = E) and on
- * p(T/2) = 0, started from the double exact flow's values (flow.c), and is
- * kept for the energy of the last point.  Multiprecision floating point,
+ * period: psi_dt(z) = the Arb Taylor integrator (flow.h) over dt mod T (on
+ * a rotation, plus 2 pi for each period in dt).  T comes from Newton's
+ * method on the turning point (H(q,0) = E) and on p(T/2) = 0 for a
+ * libration, on q(T) = q + 2 pi for a rotation, started from the double
+ * exact flow's orbit (flow.c), and is kept for the energy of the last
+ * point.  The digits the orbit's small size takes away from absolute
+ * tolerances and from E - H(q,0) are added.  An equilibrium stays, its
+ * period the limit of small orbits (as hl_exact_flow_period).  Multiprecision floating point,
  * not validated enclosures (as flow.h's Arb integrator).  HL_EUNSUP for
  * N > 1 or a quadratic H (its exact scheme is a closed form); errors of the
  * orbit as hl_exact_flow_step's. */

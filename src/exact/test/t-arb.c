@@ -6,6 +6,9 @@
  *     1000 mod T only), and agrees with the double exact scheme to 1e-12;
  *   Morse V = (1 - exp(-q))^2 from (0.4, 0.3): T = 2 pi / sqrt(2 (1 - E)) at
  *     50 digits to 1e-47;
+ *   pendulum librations (from the bottom, tiny, near the separatrix),
+ *     rotations and the equilibrium against Jacobi's closed forms (mpmath
+ *     values) at 30 digits;
  *   refused: 2 dof, a quadratic H, fewer than 16 digits; a separatrix point
  *     is an error. */
 #include <math.h>
@@ -110,6 +113,97 @@ static void test_pendulum(void)
     hl_system_free(s);
 }
 
+
+/* The pendulum against Jacobi's closed forms at 34 digits (python3 + mpmath
+ * at 50 digits, the same formulas as t-flow.c's pendulum_cases: librations
+ * sin(q/2) = k sn(t + t0 | k^2), p = 2 k cn, T = 4 K(k^2); rotations
+ * q = 2 am(k0 t | 1/k0^2), p = 2 k0 dn, T = 2 K(1/k0^2)/k0; the initial
+ * values are the doubles), at 30 digits: the period, and the state after
+ * one step of t, each within tol relative to the orbit's amplitude a. */
+static void test_pendulum_closed_forms(void)
+{
+    static const struct {
+        double q0, p0, t, a, tol;
+        const char *q, *p, *T, *what;
+    } cases[] = {
+        {0, 1.8, 4, 1, 1e-27, "0.9602479746707700815372279716990899",
+         "-1.54487334735363177186431648597764", "9.12219655369108120197809318315364",
+         "libration from the bottom"},
+        {1e-8, 0, 4, 1e-8, 1e-25, "-6.53643620863611948015075640579948e-9",
+         "7.568024953079282456915520036506579e-9", "6.283185307179586516195194936431423",
+         "q0 = 1e-8"},
+        {0, 1e-200, 4, 1e-200, 1e-25, "-7.568024953079282378260730127805124e-201",
+         "-6.536436208636119029391188851256634e-201", "6.283185307179586476925286766559006",
+         "p0 = 1e-200 (the linearised flow's p0 sin t, p0 cos t)"},
+        {3.14, 0, 4, 1, 1e-24, "3.098101837642838397744375123633754",
+         "-0.04345821456691528130089011816749309", "34.08718627715588690850400693368857",
+         "near the separatrix"},
+        {0, 2.5, 100, 1, 1e-25, "197.0317563811194164994561438609609",
+         "1.728864241968679043730874777789878", "3.1924844442635670202979381429959", "rotation"},
+        {0, -2.5, 4, 1, 1e-27, "-8.124811494434576364370708545514469",
+         "-1.927417370414738941895581876302144", "3.1924844442635670202979381429959",
+         "rotation, p < 0"},
+    };
+    hl_system *s = sys_new("p^2/2 - cos(q)");
+    hl_error err;
+    arb_ptr z = _arb_vec_init(2), ref = _arb_vec_init(2);
+    arb_t T, Tref, dt, d;
+    arb_init(T), arb_init(Tref), arb_init(dt), arb_init(d);
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        hl_exact_arb *f = NULL;
+        CHECK(hl_exact_arb_new(&f, s, 30, &err) == HL_OK);
+        arb_set_d(z, cases[i].q0), arb_set_d(z + 1, cases[i].p0);
+        int st = hl_exact_arb_period(T, z, f, &err);
+        CHECK_MSG(st == HL_OK, "%s: %s", cases[i].what, err.msg);
+        arb_set_str(Tref, cases[i].T, PREC);
+        double eT = rel(T, Tref);
+        arb_set_d(dt, cases[i].t);
+        if (st == HL_OK)
+            st = hl_exact_arb_step(z, dt, f, &err);
+        CHECK_MSG(st == HL_OK, "%s: %s", cases[i].what, err.msg);
+        arb_set_str(ref, cases[i].q, PREC), arb_set_str(ref + 1, cases[i].p, PREC);
+        double e = 0;
+        for (int j = 0; j < 2; j++) {
+            arb_sub(d, z + j, ref + j, PREC);
+            e = fmax(e, fabs(arf_get_d(arb_midref(d), ARF_RND_NEAR)) / cases[i].a);
+        }
+        printf("pendulum at 30 digits, %s: period %.3g, state at t = %g %.3g (relative)\n",
+               cases[i].what, eT, cases[i].t, e);
+        CHECK_MSG(eT < 1e-27, "%s: period relative error %.3g", cases[i].what, eT);
+        CHECK_MSG(e < cases[i].tol, "%s: state error %.3g", cases[i].what, e);
+        hl_exact_arb_free(f);
+    }
+    /* one scheme through both rotations of the same energy: the period is
+     * the same, q's advance a period is not (p < 0: -2 pi) */
+    hl_exact_arb *f = NULL;
+    CHECK(hl_exact_arb_new(&f, s, 30, &err) == HL_OK);
+    for (int sgn = 1; sgn >= -1; sgn -= 2) {
+        arb_zero(z), arb_set_d(z + 1, 2.5 * sgn);
+        arb_set_d(dt, 4);
+        CHECK(hl_exact_arb_step(z, dt, f, &err) == HL_OK);
+        arb_set_str(ref, "8.124811494434576364370708545514469", PREC);
+        arb_mul_si(ref, ref, sgn, PREC);
+        arb_sub(d, z, ref, PREC);
+        double e = fabs(arf_get_d(arb_midref(d), ARF_RND_NEAR));
+        CHECK_MSG(e < 1e-27, "rotation of sign %d after the other: q off by %.3g", sgn, e);
+    }
+    hl_exact_arb_free(f);
+    /* the equilibrium: the limit period 2 pi, and it stays */
+    CHECK(hl_exact_arb_new(&f, s, 30, &err) == HL_OK);
+    arb_zero(z), arb_zero(z + 1);
+    CHECK(hl_exact_arb_period(T, z, f, &err) == HL_OK);
+    arb_const_pi(Tref, PREC);
+    arb_mul_2exp_si(Tref, Tref, 1);
+    CHECK_MSG(rel(T, Tref) < 1e-28, "equilibrium period %.3g", rel(T, Tref));
+    arb_set_d(dt, 0.5);
+    CHECK(hl_exact_arb_step(z, dt, f, &err) == HL_OK);
+    CHECK(arb_is_zero(z) && arb_is_zero(z + 1));
+    hl_exact_arb_free(f);
+    _arb_vec_clear(z, 2), _arb_vec_clear(ref, 2);
+    arb_clear(T), arb_clear(Tref), arb_clear(dt), arb_clear(d);
+    hl_system_free(s);
+}
+
 static void test_morse(void)
 {
     hl_system *s = sys_new("p^2/2 + (1-exp(-q))^2");
@@ -164,6 +258,7 @@ static void test_refused(void)
 int main(void)
 {
     test_pendulum();
+    test_pendulum_closed_forms();
     test_morse();
     test_refused();
     flint_cleanup();
