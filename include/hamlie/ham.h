@@ -10,6 +10,11 @@
  * of H and of the extra formulas):
  *   px, py, pz (any p<letter> whose <letter> is not itself a momentum) pair
  *   with x, y, z;  p1..pN with q1..qN;  p with q, else p with x.
+ * The pairs keep the order of --pairs; inferred ones (and the parameters)
+ * are in a fixed order that does not depend on how H is written: x, y, z;
+ * then indexed names by letters and index as a number (q2 before q10); then
+ * the rest by name.  H itself is kept with its terms and factors in a fixed
+ * order (hl_expr_ordered), so its numbers do not depend on that either.
  * "D" is always the step, "H" in a formula names the Hamiltonian, "pi" is pi.
  *
  * Every function reading user text reports errors with the position in that
@@ -49,7 +54,7 @@ int hl_system_has_H(const hl_system *sys);
 hl_alg_ctx *hl_system_ctx(hl_system *sys);
 hl_pool *hl_system_pool(hl_system *sys);
 const hl_alg *hl_system_H(const hl_system *sys);
-const hl_expr *hl_system_H_expr(const hl_system *sys); /* as typed, params set */
+const hl_expr *hl_system_H_expr(const hl_system *sys); /* ordered, params set */
 
 /* Parameters given a value (--param): their number, names and values. */
 int hl_system_nset(const hl_system *sys);

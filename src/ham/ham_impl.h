@@ -21,7 +21,7 @@ struct hl_system {
     hl_alg_ctx *ctx;     /* base symbols q.., p.., params.., D */
     int has_H;
     hl_alg H;
-    const hl_expr *H_expr; /* as typed, set parameters substituted */
+    const hl_expr *H_expr; /* terms ordered (hl_expr_ordered), set parameters substituted */
     int have_field;      /* xi, eta computed (lazily, by ham_field) */
     hl_alg *xi, *eta;
 };

@@ -193,10 +193,66 @@ static int numbered(const char *s, char c)
     return 1;
 }
 
-static int cmp_index(const void *a, const void *b)
+/* The fixed order of inferred coordinates (and of parameters), whatever the
+ * order in which H mentions them: x, y, z first; then names with a numeric
+ * index (q1, q2, ..., q10), by their letters and then by the index as a
+ * number; then the rest by name. */
+static int name_class(const char *s, int *stem)
 {
-    long x = atol(*(char *const *)a + 1), y = atol(*(char *const *)b + 1);
-    return (x > y) - (x < y);
+    if (s[1] == '\0' && s[0] >= 'x' && s[0] <= 'z')
+        return s[0] - 'x';
+    int i = (int)strlen(s);
+    while (i > 0 && isdigit((unsigned char)s[i - 1]))
+        i--;
+    *stem = i;
+    return i > 0 && s[i] != '\0' ? 3 : 4;
+}
+
+/* Decimal digit strings compared as numbers (leading zeros ignored). */
+static int cmp_digits(const char *a, const char *b)
+{
+    while (*a == '0' && a[1] != '\0')
+        a++;
+    while (*b == '0' && b[1] != '\0')
+        b++;
+    size_t la = strlen(a), lb = strlen(b);
+    if (la != lb)
+        return la < lb ? -1 : 1;
+    return strcmp(a, b);
+}
+
+static int cmp_names(const char *a, const char *b)
+{
+    int sa = 0, sb = 0, ca = name_class(a, &sa), cb = name_class(b, &sb);
+    if (ca != cb)
+        return ca - cb;
+    if (ca == 3) {
+        int c = strncmp(a, b, (size_t)(sa < sb ? sa : sb));
+        if (c == 0 && sa != sb)
+            c = sa - sb;
+        if (c == 0)
+            c = cmp_digits(a + sa, b + sb);
+        if (c != 0)
+            return c;
+    }
+    return strcmp(a, b);
+}
+
+static int cmp_name_ptrs(const void *a, const void *b)
+{
+    return cmp_names(*(char *const *)a, *(char *const *)b);
+}
+
+/* Put inferred pairs in the fixed order of their coordinates (insertion
+ * sort: a handful of pairs, and q and p move together). */
+static void sort_pairs(hl_system *sys)
+{
+    for (int i = 1; i < sys->n; i++)
+        for (int j = i; j > 0 && cmp_names(sys->q[j - 1], sys->q[j]) > 0; j--) {
+            char *q = sys->q[j], *p = sys->p[j];
+            sys->q[j] = sys->q[j - 1], sys->p[j] = sys->p[j - 1];
+            sys->q[j - 1] = q, sys->p[j - 1] = p;
+        }
 }
 
 static int infer_pairs(hl_system *sys, const namelist *syms, const char *Hsrc, hl_error *err)
@@ -217,8 +273,10 @@ static int infer_pairs(hl_system *sys, const namelist *syms, const char *Hsrc, h
             add_pair(sys, hl_xstrdup(q), hl_xstrdup(pn));
         }
     }
-    if (sys->n > 0)
+    if (sys->n > 0) {
+        sort_pairs(sys);
         return HL_OK;
+    }
 
     /* q1..qN with p1..pN, in the order of the index. */
     namelist k = {0, 0, NULL};
@@ -229,7 +287,7 @@ static int infer_pairs(hl_system *sys, const namelist *syms, const char *Hsrc, h
             names_add(&k, buf);
         }
     if (k.n > 0) {
-        qsort(k.s, (size_t)k.n, sizeof *k.s, cmp_index);
+        qsort(k.s, (size_t)k.n, sizeof *k.s, cmp_name_ptrs);
         for (int i = 0; i < k.n; i++) {
             char buf[64];
             snprintf(buf, sizeof buf, "p%s", k.s[i] + 1);
@@ -426,6 +484,7 @@ static int build_ctx(hl_system *sys, const namelist *syms)
             sys->param = hl_xrealloc(sys->param, (size_t)(sys->nparam + 1) * sizeof *sys->param);
             sys->param[sys->nparam++] = hl_xstrdup(syms->s[i]);
         }
+    qsort(sys->param, (size_t)sys->nparam, sizeof *sys->param, cmp_name_ptrs);
     int nb = 2 * sys->n + sys->nparam + 1;
     const char **names = hl_xmalloc((size_t)nb * sizeof *names);
     for (int j = 0; j < sys->n; j++) {
@@ -481,6 +540,8 @@ int hl_system_new(hl_system **out, const hl_system_spec *spec, hl_error *err)
     if (spec->params != NULL && (st = check_param_values(sys, spec->params, err)) != HL_OK)
         goto fail;
     if (H != NULL) {
+        /* Terms in a fixed order: how H is written changes no number. */
+        H = hl_expr_ordered(sys->pool, H);
         sys->H_expr = subst_params(sys, H);
         if ((st = ham_read_expr(&sys->H, sys, H, spec->H, 0, err)) != HL_OK) {
             hl_error_prefix(err, "in the Hamiltonian");

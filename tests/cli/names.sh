@@ -1,0 +1,97 @@
+#!/bin/bash
+# Names (issue 13, defects 4, 8, 11): the order of the phase variables does
+# not depend on how H is written; the step's name can be changed and is never
+# taken for a parameter; the truncated Lie series of any order N is the
+# scheme lieN, checked against its own definition (v_k = -g^k for k > N).
+# usage (from the repo root): bash tests/cli/names.sh path/to/hamlie
+set -u
+HAMLIE=${1:?usage: names.sh path/to/hamlie}
+. "$(dirname "$0")/lib/harness.sh"
+
+# same_output NAME ARGS...: the stdout of hamlie ARGS equals $tmp/want
+same_as_want() {
+    local what=$1
+    if cmp -s "$tmp/out" "$tmp/want"; then ok; else
+        bad "$what: output differs from the first writing of H:"
+        diff "$tmp/want" "$tmp/out" | head -6 | sed 's/^/    /' >&2
+    fi
+}
+
+# permutations FILE TERMS...: write several orderings of the terms (a sum),
+# one per line, into FILE; a fixed seed so a failure repeats.
+permutations() {
+    local file=$1
+    shift
+    python3 - "$@" >"$file" <<'PYEOF'
+import random, sys
+terms = sys.argv[1:]
+rng = random.Random(13)
+seen = []
+for k in range(6):
+    t = terms[:] if k == 0 else (terms[::-1] if k == 1 else rng.sample(terms, len(terms)))
+    print(" + ".join(t))
+PYEOF
+}
+
+# every_writing_same FILE RUN_ARGS...: for each H in FILE, the run's CSV and
+# generator/bracket outputs equal those of the first H (byte for byte).
+every_writing_same() {
+    local file=$1 first=1 H
+    shift
+    while IFS= read -r H; do
+        for cmd in run generator bracket; do
+            case $cmd in
+            run) run 0 run -H "$H" "$@" ;;
+            generator) run 0 generator -H "$H" ;;
+            bracket) run 0 bracket -H "$H" "$BRACKET_A" H ;;
+            esac
+            if [ $first -eq 1 ]; then cp "$tmp/out" "$tmp/want.$cmd"; else
+                cp "$tmp/want.$cmd" "$tmp/want"; same_as_want "$cmd with H = $H"
+            fi
+        done
+        first=0
+    done <"$file"
+}
+
+# ---- defect 8: the order of the phase variables ----------------------------
+# Hénon–Heiles (2 dof, x:px, y:py): Itoh–Abe depends on the coordinate order,
+# so any writing of H that changed it changes the trajectory.
+permutations "$tmp/hh" 'px^2/2' 'py^2/2' 'x^2/2' 'y^2/2' 'x^2*y' '-y^3/3'
+BRACKET_A='x*py - y*px + x^3'
+every_writing_same "$tmp/hh" --scheme itoh-abe --dt 0.1 --t 2 --init x=0.1,y=0.2,px=0.3,py=-0.1
+run 0 run -H "$(tail -1 "$tmp/hh")" --scheme itoh-abe --dt 0.1 --t 0 --init py=-0.1,px=0.3,y=0.2,x=0.1
+has_line 't,x,y,px,py,H,sigma'
+
+# 3 dof: x, y, z first in that order, whatever comes first in H.
+permutations "$tmp/h3" 'pz^2/2' 'px^2/2' 'py^2/2' 'z^2' 'x^2/2' 'y^2*3/2' 'x*y*z' '-z^4/8'
+BRACKET_A='z*px - x*pz + y'
+every_writing_same "$tmp/h3" --scheme itoh-abe --dt 0.1 --t 1 --init x=0.3,y=-0.2,z=0.1,px=0,py=0.1,pz=-0.2
+run 0 run -H "$(tail -1 "$tmp/h3")" --scheme euler --dt 0.1 --t 0 --init x=0.3,y=-0.2,z=0.1,px=0,py=0.1,pz=-0.2
+has_line 't,x,y,z,px,py,pz,H,sigma'
+
+# FPU-alpha chain q1..q10, fixed ends: indices sorted as numbers (q10 last).
+fpu_terms() {
+    for i in $(seq 1 10); do printf "p$i^2/2\n"; done
+    printf "q1^2/2\nq10^2/2\n"
+    for i in $(seq 1 9); do printf "(q$((i + 1))-q$i)^2/2 + (q$((i + 1))-q$i)^3/4\n"; done
+}
+mapfile -t FPU < <(fpu_terms)
+permutations "$tmp/fpu" "${FPU[@]}"
+BRACKET_A='q10*p1 + q2*p9'
+init=$(for i in $(seq 1 10); do printf "q$i=0.$((i % 7)),p$i=-0.0$i,"; done)
+every_writing_same "$tmp/fpu" --scheme itoh-abe --dt 0.05 --t 0.5 --init "${init%,}"
+run 0 run -H "$(tail -1 "$tmp/fpu")" --scheme euler --dt 0.1 --t 0 --init "${init%,}"
+has_line "t,$(seq -s, -f 'q%g' 1 10),$(seq -s, -f 'p%g' 1 10),H,sigma"
+
+# Other names: sorted by name; momenta follow their coordinates.
+permutations "$tmp/ab" 'pb^2/2' 'pa^2' 'a^2*b^2' 'b^4' 'a^2/2'
+BRACKET_A='a*pb'
+every_writing_same "$tmp/ab" --scheme itoh-abe --dt 0.1 --t 1 --init a=0.5,b=0.1,pa=0,pb=0.2
+run 0 run -H "$(tail -1 "$tmp/ab")" --scheme euler --dt 0.1 --t 0 --init a=0.5,b=0.1,pa=0,pb=0.2
+has_line 't,a,b,pa,pb,H,sigma'
+
+# Given pairs keep their order.
+run 0 run -H "$(head -1 "$tmp/hh")" --pairs y:py,x:px --scheme euler --dt 0.1 --t 0 --init x=1,y=0,px=0,py=0
+has_line 't,y,x,py,px,H,sigma'
+
+finish
