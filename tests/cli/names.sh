@@ -94,4 +94,75 @@ has_line 't,a,b,pa,pb,H,sigma'
 run 0 run -H "$(head -1 "$tmp/hh")" --pairs y:py,x:px --scheme euler --dt 0.1 --t 0 --init x=1,y=0,px=0,py=0
 has_line 't,y,x,py,px,H,sigma'
 
+# ---- defect 11: the truncated Lie series lieN ------------------------------
+# The scheme psi_D z = sum_{k<=N} D^k/k! g^k z differs from the exact flow
+# exp(D g) z = sum_k D^k/k! g^k z by -sum_{k>N} D^k/k! g^k z, so (v_k being
+# the coefficient fields of psi_D - exp(D g), as errors prints them)
+# v_k = 0 for k <= N and v_k = -g^k z for k > N.  g^k z computed here by
+# SymPy from g f = {f, H}.
+PEND='p^2/2 - cos(q)'
+lie_fields_check='
+from sympy import diff, symbols, cos
+q, p = symbols("q p")
+H = p**2/2 - cos(q)
+def g(f): return diff(f, q)*diff(H, p) - diff(f, p)*diff(H, q)
+def gk(f, k):
+    for _ in range(k): f = g(f)
+    return f
+fields = {x["k"]: x["v"] for x in d["fields"]}
+assert sorted(fields) == list(range(2, n + 1)), sorted(fields)
+for k, v in fields.items():
+    for name, z in (("q", q), ("p", p)):
+        want = 0 if k <= N else -gk(z, k)
+        assert simplify(S(v[name]) - want) == 0, (k, name, v[name], want)
+assert d["order"] == N, d["order"]
+assert d["scheme"]["name"] == "lie%d" % N, d["scheme"]'
+for N in 3 1 6; do
+    n=$((N + 2))
+    run 0 errors -H "$PEND" --scheme lie$N --order $n --json
+    py "N = $N; n = $n
+$lie_fields_check"
+done
+# lie1 is explicit Euler: the same fields
+run 0 errors -H "$PEND" --scheme lie1 --order 4 --json
+py 'import json; json.dump(d["fields"], open("'"$tmp"'/lie1.json", "w"))'
+run 0 errors -H "$PEND" --scheme euler --order 4 --json
+py 'import json; e = json.load(open("'"$tmp"'/lie1.json"))
+assert all(same(a["v"][c], b["v"][c]) for a, b in zip(e, d["fields"]) for c in "qp"), (e, d["fields"])'
+
+# observed order 6 of lie6 from three steps (the reference is the adaptive
+# Taylor integrator at 1e-15; errors here are 1e-6 .. 1e-10)
+run 0 run -H "$PEND" --scheme lie6 --dt 0.4 --t 4 --init q=1.3,p=0 --orders 0.4,0.2,0.1 --json
+python3 - "$tmp/out" <<'PYEOF' >"$tmp/py" 2>&1 && ok || { bad "lie6 observed order"; cat "$tmp/py" >&2; }
+import json, sys
+d = json.load(open(sys.argv[1]))
+orders = [o["order"] for o in d["orders"][1:]]
+assert all(abs(o - 6) < 0.3 for o in orders), d["orders"]
+PYEOF
+# --scheme lie -n 6 --dt is the same scheme
+run 0 run -H "$PEND" --scheme lie6 --dt 0.1 --t 1 --init q=1.3,p=0
+cp "$tmp/out" "$tmp/want"
+run 0 run -H "$PEND" --scheme lie -n 6 --dt 0.1 --t 1 --init q=1.3,p=0
+same_as_want "--scheme lie -n 6 against --scheme lie6"
+
+# the listing names the family once, with its range
+run 0 schemes
+if [ "$(grep -c '^lie' "$tmp/out")" -eq 1 ]; then ok; else bad "schemes lists lie more than once"; fi
+has_text 'lie1 (explicit Euler)'
+run 0 schemes --json
+py2() { python3 -c "import json,sys; d=json.load(open('$tmp/out')); $1" && ok || bad "schemes --json: $1"; }
+py2 'e=[s for s in d["schemes"] if s["name"]=="lieN"][0]; assert e["order_range"]==[1,20] and e["order"] is None, e'
+
+# out of the range, or not a number: refused, with the range
+# (run --scheme lie alone is the adaptive integrator, or lie -n N with --dt)
+for bad_name in lie0 lie21 lie99 lieX lie; do
+    run 2 errors -H "$PEND" --scheme $bad_name --order 3
+    err_has "N = 1..20"
+    [ $bad_name = lie ] && continue
+    run 2 run -H "$PEND" --scheme $bad_name --dt 0.1 --t 1 --init q=1,p=0 --orders 0.1,0.05
+    err_has "N = 1..20"
+done
+run 2 run -H "$PEND" --scheme lie6 -n 3 --dt 0.1 --t 1 --init q=1,p=0
+err_has "--scheme lie6"
+
 finish

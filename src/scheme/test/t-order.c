@@ -39,8 +39,9 @@ static const want schemes[] = {
     {"avf", 2, 0},
     {"gonzalez", 2, 0},
     {"itoh-abe", 1, 0},
-    {"lie", 4, 0},
+    {"lie4", 4, 0},
     {"lie", 3, 3},
+    {"lie9", 9, 0},
     {"yoshida4", 4, 0},
     {"paper-euler", 1, 0},
 };
