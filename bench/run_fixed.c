@@ -459,7 +459,7 @@ int main(int argc, char **argv)
     if (reps < 1)
         reps = 1;
     hl_error err;
-    hl_system_spec spec = {"p^2/2 - cos(q)", NULL, NULL, NULL};
+    hl_system_spec spec = {"p^2/2 - cos(q)", NULL, NULL, NULL, NULL};
     hl_system *sys = NULL;
     if (hl_system_new(&sys, &spec, &err) != HL_OK) {
         fprintf(stderr, "run_fixed: %s\n", err.msg);

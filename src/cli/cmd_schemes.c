@@ -127,7 +127,7 @@ int cmd_schemes(int argc, char **argv)
     int rc = cli_parse(&o, argc, argv, 0, cmd);
     if (rc < 0 && o.nargs > 0)
         rc = cli_usage(cmd, "unexpected argument '%s'", o.args[0]);
-    if (rc < 0 && (o.H != NULL || o.pairs != NULL || o.params != NULL))
+    if (rc < 0 && (o.H != NULL || o.pairs != NULL || o.params != NULL || o.step != NULL))
         rc = cli_usage(cmd, "schemes takes no system options");
     if (rc < 0) {
         hl_buf out;

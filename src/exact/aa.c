@@ -160,7 +160,7 @@ int hl_exact_aa_scheme(hl_alg *images, const hl_exact_aa *aa, hl_system *sys, hl
     hl_pool *pool = hl_system_pool(sys);
     /* theta -> theta(q,p) + nu(I(q,p)) D, I -> I(q,p) */
     const hl_expr *nu = in_qp(pool, aa->nu, aa->theta, aa->I);
-    const hl_expr *th = hl_add(pool, aa->theta, hl_mul(pool, nu, hl_sym(pool, "D")));
+    const hl_expr *th = hl_add(pool, aa->theta, hl_mul(pool, nu, hl_sym(pool, hl_system_step(sys))));
     int st = alg_of(&images[0], in_qp(pool, aa->q, th, aa->I), sys, err);
     if (st == HL_OK)
         st = alg_of(&images[1], in_qp(pool, aa->p, th, aa->I), sys, err);

@@ -143,15 +143,18 @@ const char *hl_scheme_text(const char *name)
 
 /* ---- reading a language text for a system -------------------------------- */
 
-static int read_text(hl_scheme **out, const char *name, const char *text, hl_system *sys,
-                     hl_error *err)
+/* step_word: the step's name in the text, "D" in the catalog's texts, the
+ * system's step name in the user's. */
+static int read_text(hl_scheme **out, const char *name, const char *text, const char *step_word,
+                     hl_system *sys, hl_error *err)
 {
     sb b;
     sb_init(&b, sys, name);
     int N = hl_system_ndof(sys);
     const hl_expr **pt = hl_xmalloc((size_t)(2 * N + 1) * sizeof *pt);
     scheme_point(pt, sys);
-    scheme_frame f = {pt, pt + N, b.s->iQ, b.s->iP, hl_sym(b.pool, "D"), ""};
+    scheme_frame f = {pt, pt + N, b.s->iQ, b.s->iP, hl_sym(b.pool, hl_system_step(sys)), "",
+                      step_word};
     int st = scheme_read(&b, text, &f, err);
     free(pt);
     if (st != HL_OK) {
@@ -164,7 +167,7 @@ static int read_text(hl_scheme **out, const char *name, const char *text, hl_sys
 int hl_scheme_from_text(hl_scheme **out, const char *def, hl_system *sys, hl_error *err)
 {
     *out = NULL;
-    return read_text(out, "user", def, sys, err);
+    return read_text(out, "user", def, hl_system_step(sys), sys, err);
 }
 
 /* ---- compositions --------------------------------------------------------- */
@@ -206,8 +209,8 @@ int hl_scheme_compose(hl_scheme **out, const char *name, const char *text, int r
             break;
         hl_buf_printf(&nb, "c%d.", i + 1);
         char *prefix = hl_buf_take(&nb);
-        scheme_frame f = {cur, cur + N, nxt, nxt + N, hl_mul(b.pool, ci, hl_sym(b.pool, "D")),
-                          prefix};
+        scheme_frame f = {cur, cur + N, nxt, nxt + N,
+                          hl_mul(b.pool, ci, hl_sym(b.pool, hl_system_step(sys))), prefix, "D"};
         st = scheme_read(&b, text, &f, err);
         free(prefix);
         for (int a = 0; a < 2 * N; a++)
@@ -272,7 +275,7 @@ int hl_scheme_rk(hl_scheme **out, const char *name, int s, const char *const *A,
         lin(&t, s, b, w ? 'l' : 'k');
         hl_buf_puts(&t, w ? ")" : "); ");
     }
-    int st = read_text(out, name, t.s, sys, err);
+    int st = read_text(out, name, t.s, "D", sys, err);
     hl_buf_clear(&t);
     return st;
 }
@@ -305,7 +308,7 @@ int hl_scheme_lie(hl_scheme **out, int n, hl_system *sys, hl_error *err)
     hl_alg *terms = hl_alg_vec_new(n + 1, ctx);
     hl_alg phi;
     hl_alg_init(&phi, ctx);
-    const hl_expr *D = hl_sym(b.pool, "D");
+    const hl_expr *D = hl_sym(b.pool, hl_system_step(sys));
     for (int a = 0; st == HL_OK && a < 2 * N; a++) {
         hl_alg_gen(&phi, a < N ? hl_system_var_q(sys, a) : hl_system_var_p(sys, a - N), ctx);
         st = hl_lie_terms(terms, &phi, n, sys, err);
@@ -356,7 +359,7 @@ static int itoh_abe(hl_scheme **out, hl_system *sys, hl_error *err)
     scheme_point(z, sys);
     for (int a = 0; a < M; a++)
         names[a] = z[a]->name;
-    const hl_expr *s = hl_sym(b.pool, HL_SCHEME_S), *D = hl_sym(b.pool, "D");
+    const hl_expr *s = hl_sym(b.pool, HL_SCHEME_S), *D = hl_sym(b.pool, hl_system_step(sys));
     const hl_expr **quot = hl_xmalloc((size_t)M * sizeof *quot);
     for (int i = 0; i < M; i++) {
         int ui = i < N ? b.s->iQ[i] : b.s->iP[i - N];
@@ -403,7 +406,7 @@ static int gonzalez(hl_scheme **out, hl_system *sys, hl_error *err)
     scheme_point(z, sys);
     for (int a = 0; a < M; a++)
         names[a] = z[a]->name;
-    const hl_expr *D = hl_sym(pool, "D"), *half = hl_num_frac(pool, 1, 2);
+    const hl_expr *D = hl_sym(pool, hl_system_step(sys)), *half = hl_num_frac(pool, 1, 2);
     hl_buf nb;
     hl_buf_init(&nb);
     for (int a = 0; a < M; a++) {
@@ -545,7 +548,7 @@ int hl_scheme_new(hl_scheme **out, const char *name, int param, hl_system *sys,
                             "H = (p^2 + q^2)/2 (in the system's names); this system is not it",
                             name);
     if (e->text)
-        return read_text(out, name, e->text, sys, err);
+        return read_text(out, name, e->text, "D", sys, err);
     if (strcmp(name, "rk4") == 0)
         return hl_scheme_rk(out, name, 4, rk4_A, rk4_b, sys, err);
     if (strcmp(name, "gauss2") == 0)

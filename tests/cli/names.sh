@@ -165,4 +165,88 @@ done
 run 2 run -H "$PEND" --scheme lie6 -n 3 --dt 0.1 --t 1 --init q=1,p=0
 err_has "--scheme lie6"
 
+# ---- defect 4: the step's name ----------------------------------------------
+# Textbooks name the Morse depth D.  With the step named D (the default) a D
+# in H is refused, pointing at it; --step h frees the name.
+MORSE='p^2/2 + D*(1-exp(-q))^2'
+for cmd in lie generator check; do
+    case $cmd in
+    lie) run 2 lie -H "$MORSE" --order 2 ;;
+    generator) run 2 generator -H "$MORSE" ;;
+    check) run 2 check -H "$MORSE" --integral 'p' ;;
+    esac
+    err_has "'D' is the step's name"
+    err_has "--step h"
+    if grep -qxF '          ^' "$tmp/err"; then ok; else bad "$cmd: caret not under the D of H"; cat "$tmp/err" >&2; fi
+    [ -s "$tmp/out" ] && bad "$cmd wrote output on an error" || ok
+done
+# nor in a function of the phase variables
+run 2 check -H 'p^2/2 + q^2/2' --integral 'p*q + D'
+err_has "'D' is the step's name"
+run 2 lie -H "$PEND" --order 2 --of 'p + D*q'
+err_has "'D' is the step's name"
+run 2 bracket -H "$PEND" 'q*D' p
+err_has "'D' is the step's name"
+
+# --step h: D is a parameter.  exp(h g) z to h^2 against SymPy:
+# q + h p - h^2/2 V'(q),  p - h V'(q) - h^2/2 p V''(q),  V = D (1 - e^-q)^2
+run 0 lie -H "$MORSE" --step h --order 2 --json
+py 'from sympy import exp, diff
+q, p, h, D = (Symbol(n) for n in ("q", "p", "h", "D"))
+assert sy["step"] == "h" and sy["parameters"] == ["D"], sy
+V = D*(1 - exp(-q))**2
+want = {"q": q + h*p - h**2/2*diff(V, q), "p": p - h*diff(V, q) - h**2/2*p*diff(V, q, 2)}
+for s in d["series"]:
+    assert simplify(S(s["series"]) - want[s["input"]]) == 0, (s, want[s["input"]])'
+run 0 lie -H "$MORSE" --step h --order 2
+has_text 'exp(h 𝔤) q = q + h*p'
+has_text '+ O(h^3)'
+
+# a user's map written with h, D a parameter: Euler, so v_k = -g^k z
+run 0 errors -H "$MORSE" --step h --map 'Q = q + h*p; P = p - h*2*D*(1-exp(-q))*exp(-q)' --order 3 --json
+py 'from sympy import exp, diff
+q, p, D = Symbol("q"), Symbol("p"), Symbol("D")
+H = p**2/2 + D*(1 - exp(-q))**2
+def g(f): return diff(f, q)*diff(H, p) - diff(f, p)*diff(H, q)
+for x in d["fields"]:
+    k = x["k"]
+    for name, z in (("q", q), ("p", p)):
+        w = z
+        for _ in range(k): w = g(w)
+        assert simplify(S(x["v"][name]) + w) == 0, (k, name)
+assert d["order"] == 1'
+# user equations with h and --param D=2: the catalog's implicit midpoint
+run 0 run -H "$MORSE" --step h --param D=2 --scheme implicit-midpoint --dt 0.1 --t 2 --init q=0.5,p=0
+cp "$tmp/out" "$tmp/want"
+run 0 run -H "$MORSE" --step h --param D=2 --equations '(Q-q)/h = (p+P)/2; (P-p)/h = -2*D*(1-exp(-(q+Q)/2))*exp(-(q+Q)/2)' --dt 0.1 --t 2 --init q=0.5,p=0
+python3 - "$tmp/want" "$tmp/out" <<'PYEOF' >"$tmp/py" 2>&1 && ok || { bad "--equations with h vs implicit-midpoint"; cat "$tmp/py" >&2; }
+import sys
+a = [l.split(",") for l in open(sys.argv[1]).read().split()[1:]]
+b = [l.split(",") for l in open(sys.argv[2]).read().split()[1:]]
+assert len(a) == len(b) == 21
+assert all(abs(float(x) - float(y)) <= 1e-14 for r, s in zip(a, b) for x, y in zip(r[:3], s[:3])), (a[-1], b[-1])
+PYEOF
+# the name of the step changes no number
+for s in rk4 gauss2 itoh-abe lie4 avf; do
+    run 0 run -H "$PEND" --scheme $s --dt 0.1 --t 1 --init q=1.3,p=-0.2
+    cp "$tmp/out" "$tmp/want"
+    run 0 run -H "$PEND" --step dt --scheme $s --dt 0.1 --t 1 --init q=1.3,p=-0.2
+    same_as_want "$s with --step dt"
+done
+run 1 canonical --step h --map 'X = x + h*p; P = p - h*x'
+has_line '{X, P} = 1 + h^2    should be 1'
+
+# what cannot be the step, or cannot use its name
+run 2 lie -H "$PEND" --step sin --order 2
+err_has "cannot be the step's name"
+run 2 lie -H "$PEND" --step 'h 1' --order 2
+err_has "must be a name"
+run 2 lie -H "$MORSE" --step h --param h=2 --order 2
+err_has "it is the step's name"
+run 2 generator -H 'ph^2/2' --step h --pairs h:ph
+err_has "it is the step's name"
+run 2 errors -H "$PEND" --step h --map 'Q = q + D*p; P = p - D*sin(q)' --order 2
+err_has "unknown symbol 'D'"
+run 2 schemes --step h
+
 finish

@@ -111,7 +111,7 @@ static void run(const char *H, const char *label)
 {
     hl_system *sys;
     hl_error err;
-    hl_system_spec spec = {H, NULL, NULL, NULL};
+    hl_system_spec spec = {H, NULL, NULL, NULL, NULL};
     if (hl_system_new(&sys, &spec, &err) != HL_OK) {
         fprintf(stderr, "system: %s\n", err.msg);
         exit(2);
