@@ -394,7 +394,9 @@ static void json_head(hl_buf *b, hl_system *sys, const run_opts *r, const cli_op
         hl_buf_puts(b, i ? ", " : "");
         hl_json_escape(b, hl_system_momentum(sys, i));
     }
-    hl_buf_puts(b, "], \"parameters\": [], \"step\": \"D\"}");
+    hl_buf_puts(b, "], \"parameters\": [], \"step\": ");
+    hl_json_escape(b, hl_system_step(sys));
+    hl_buf_puts(b, "}");
     jkv_str(b, "H_input", o->H);
     jkv_str(b, "scheme", r->scheme != NULL ? r->scheme : o->map != NULL ? "map" : "equations");
     jkv_str(b, "integrator", adaptive(r) ? "adaptive-taylor" : "fixed-step");

@@ -235,6 +235,10 @@ for s in rk4 gauss2 itoh-abe lie4 avf; do
 done
 run 1 canonical --step h --map 'X = x + h*p; P = p - h*x'
 has_line '{X, P} = 1 + h^2    should be 1'
+run 0 canonical --step h --map 'X = x*cos(h) + p*sin(h); P = p*cos(h) - x*sin(h)'
+has_line 'canonical for every h'
+run 0 run -H "$MORSE" --step h --param D=2 --scheme rk4 --dt 0.1 --t 0.2 --init q=0.5,p=0 --json
+python3 -c "import json; d = json.load(open('$tmp/out')); assert d['symbols']['step'] == 'h', d['symbols']" && ok || bad "run --json: symbols.step"
 
 # what cannot be the step, or cannot use its name
 run 2 lie -H "$PEND" --step sin --order 2
