@@ -487,7 +487,8 @@ static int build_ctx(hl_system *sys, const namelist *syms)
             sys->param = hl_xrealloc(sys->param, (size_t)(sys->nparam + 1) * sizeof *sys->param);
             sys->param[sys->nparam++] = hl_xstrdup(syms->s[i]);
         }
-    qsort(sys->param, (size_t)sys->nparam, sizeof *sys->param, cmp_name_ptrs);
+    if (sys->nparam > 1)
+        qsort(sys->param, (size_t)sys->nparam, sizeof *sys->param, cmp_name_ptrs);
     int nb = 2 * sys->n + sys->nparam + 1;
     const char **names = hl_xmalloc((size_t)nb * sizeof *names);
     for (int j = 0; j < sys->n; j++) {

@@ -251,6 +251,9 @@ run 2 generator -H 'ph^2/2' --step h --pairs h:ph
 err_has "it is the step's name"
 run 2 errors -H "$PEND" --step h --map 'Q = q + D*p; P = p - D*sin(q)' --order 2
 err_has "unknown symbol 'D'"
-run 2 schemes --step h
+for cmd in schemes plot reproduce; do
+    run 2 $cmd --step h
+    err_has "no system options"
+done
 
 finish
