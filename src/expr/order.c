@@ -96,8 +96,7 @@ static const hl_expr *minus(hl_pool *pool, const hl_expr *e)
  * through? */
 static int joins(const hl_expr *e, int sum)
 {
-    return sum ? e->kind == HL_ADD || e->kind == HL_SUB
-               : e->kind == HL_MUL || e->kind == HL_DIV;
+    return sum ? e->kind == HL_ADD || e->kind == HL_SUB : e->kind == HL_MUL || e->kind == HL_DIV;
 }
 
 /* Flatten the sum (or product) at e into w->ops[base..]: each operand in its

@@ -48,7 +48,8 @@ static void check_long_sum(hl_pool *pool, int n)
 {
     const hl_expr *up = NULL, *down = NULL, *x = hl_sym(pool, "x");
     for (int i = 0; i < n; i++) {
-        const hl_expr *t = hl_mul(pool, hl_num_si(pool, i + 1), hl_pow(pool, x, hl_num_si(pool, i)));
+        const hl_expr *t =
+            hl_mul(pool, hl_num_si(pool, i + 1), hl_pow(pool, x, hl_num_si(pool, i)));
         up = up ? hl_add(pool, up, t) : t;
         int j = n - 1 - i;
         t = hl_mul(pool, hl_pow(pool, x, hl_num_si(pool, j)), hl_num_si(pool, j + 1));
