@@ -240,6 +240,10 @@ has_line 'canonical for every h'
 run 0 run -H "$MORSE" --step h --param D=2 --scheme rk4 --dt 0.1 --t 0.2 --init q=0.5,p=0 --json
 python3 -c "import json; d = json.load(open('$tmp/out')); assert d['symbols']['step'] == 'h', d['symbols']" && ok || bad "run --json: symbols.step"
 
+run 0 exact -H '(p^2+x^2)/2' --step h
+has_line 'two steps of h = one step of 2h: yes'
+has_line '  P = -x*sin(h) + p*cos(h)'
+
 # what cannot be the step, or cannot use its name
 run 2 lie -H "$PEND" --step sin --order 2
 err_has "cannot be the step's name"
