@@ -61,6 +61,17 @@ int hl_exact_aa_read(hl_exact_aa *aa, hl_system *sys, const char *spec, hl_error
     if (miss != NULL)
         return hl_error_set(err, HL_EINVAL, spec, -1, 0, "the action-angle map lacks '%s'",
                             miss);
+    /* The map is of phase space alone: the step in it would be taken for the
+     * step, not for a parameter of that name. */
+    const char *step = hl_system_step(sys);
+    for (int i = 0; i < n; i++)
+        if (hl_expr_has_symbol(eq[i].rhs, step))
+            return hl_error_set(err, HL_EINVAL, spec, hl_symbol_pos(spec, step),
+                                (int)strlen(step),
+                                "'%s' is the step's name and cannot appear in the "
+                                "action-angle map; if it is a parameter, give the step "
+                                "another name (--step h)",
+                                step);
     return HL_OK;
 }
 

@@ -244,6 +244,10 @@ run 0 exact -H '(p^2+x^2)/2' --step h
 has_line 'two steps of h = one step of 2h: yes'
 has_line '  P = -x*sin(h) + p*cos(h)'
 
+# an action-angle map is of phase space alone
+run 2 exact -H '(p^2+x^2)/2' --action-angle 'theta = atan(x/p) + D; I = (x^2+p^2)/2; x = sqrt(2*I)*sin(theta - D); p = sqrt(2*I)*cos(theta - D); nu = 1'
+err_has "'D' is the step's name"
+
 # what cannot be the step, or cannot use its name
 run 2 lie -H "$PEND" --step sin --order 2
 err_has "cannot be the step's name"
