@@ -26,7 +26,7 @@ static double now(void)
 /* From the text of H and the scheme's name to v_2..v_order. */
 static int run_once(const char *H, const char *scheme, int order, int cross)
 {
-    hl_system_spec spec = {H, NULL, NULL, NULL};
+    hl_system_spec spec = {H, NULL, NULL, NULL, NULL};
     hl_system *sys = NULL;
     hl_scheme *s = NULL;
     hl_series *psi = NULL;

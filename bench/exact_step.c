@@ -27,7 +27,7 @@ static double now(void)
 
 int main(void)
 {
-    hl_system_spec spec = {"p^2/2 - cos(q)", NULL, NULL, NULL};
+    hl_system_spec spec = {"p^2/2 - cos(q)", NULL, NULL, NULL, NULL};
     hl_system *sys = NULL;
     hl_error err;
     if (hl_system_new(&sys, &spec, &err) != HL_OK)

@@ -21,7 +21,7 @@ static double now(void)
  * the set-up (parsing, context) is part of what a user waits for. */
 static int run_once(const char *H, int order, long *terms)
 {
-    hl_system_spec spec = {H, NULL, NULL, NULL};
+    hl_system_spec spec = {H, NULL, NULL, NULL, NULL};
     hl_system *sys = NULL;
     hl_error err;
     hl_error_clear(&err);

@@ -428,7 +428,7 @@ static const entry table[] = {
     {"stormer-verlet-dkd", "stormer-verlet-dkd", verlet_dkd, ""},
     {"yoshida4", "yoshida4", yoshida4, ""},
     {"rk4", "rk4", rk4, ""},
-    {"lie", "lie", lie4, ""},
+    {"lie4", "lie4", lie4, ""},
     {"implicit-midpoint", "implicit-midpoint", midpoint, "hand: Newton on (Q, P)"},
     {"implicit-midpoint/P", "implicit-midpoint", midpoint_p, "hand: Newton on P"},
     {"gauss2", "gauss2", gauss2, "hand: Newton on the 4 stage increments"},
@@ -459,7 +459,7 @@ int main(int argc, char **argv)
     if (reps < 1)
         reps = 1;
     hl_error err;
-    hl_system_spec spec = {"p^2/2 - cos(q)", NULL, NULL, NULL};
+    hl_system_spec spec = {"p^2/2 - cos(q)", NULL, NULL, NULL, NULL};
     hl_system *sys = NULL;
     if (hl_system_new(&sys, &spec, &err) != HL_OK) {
         fprintf(stderr, "run_fixed: %s\n", err.msg);

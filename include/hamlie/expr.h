@@ -153,6 +153,13 @@ double hl_expr_cost(const hl_expr *const *e, int n);
 const hl_expr *hl_expr_subst(hl_pool *pool, const hl_expr *e, int n,
                              const char *const *names, const hl_expr *const *vals);
 
+/* The same formula with the terms of every sum and the factors of every
+ * product in a fixed order that depends on their structure and names only
+ * (a - b + c stays signed terms, a*b/c stays divisions), so that writings of
+ * a formula that differ only in those orders give the same DAG and evaluate
+ * to the same bits.  Minus signs move out of products into their sum. */
+const hl_expr *hl_expr_ordered(hl_pool *pool, const hl_expr *e);
+
 /* Derivative with respect to a symbol, lightly simplified (0 and 1 folded,
  * rational constants combined) so that tapes built from it stay small. */
 const hl_expr *hl_expr_diff(hl_pool *pool, const hl_expr *e, const char *var);

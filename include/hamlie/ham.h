@@ -10,7 +10,16 @@
  * of H and of the extra formulas):
  *   px, py, pz (any p<letter> whose <letter> is not itself a momentum) pair
  *   with x, y, z;  p1..pN with q1..qN;  p with q, else p with x.
- * "D" is always the step, "H" in a formula names the Hamiltonian, "pi" is pi.
+ * The pairs keep the order of --pairs; inferred ones (and the parameters)
+ * are in a fixed order that does not depend on how H is written: x, y, z;
+ * then indexed names by letters and index as a number (q2 before q10); then
+ * the rest by name.  H itself is kept with its terms and factors in a fixed
+ * order (hl_expr_ordered), so its numbers do not depend on that either.
+ * The step is named "D" unless the spec names it otherwise (a Morse depth D
+ * is a parameter once the step is called, say, "h"); the step cannot appear
+ * in H nor in a function of the phase variables (hl_system_read_phase), nor
+ * be a variable or a parameter.  "H" in a formula names the Hamiltonian,
+ * "pi" is pi.
  *
  * Every function reading user text reports errors with the position in that
  * text (err->src, err->pos).
@@ -34,6 +43,7 @@ typedef struct hl_system_spec {
     const char *params;       /* "k=2,omega=1/3": parameter values, or NULL */
     const char *const *extra; /* NULL-terminated list of other formulas whose
                                  symbols count when inferring variables, or NULL */
+    const char *step;         /* the step's name, or NULL for "D" */
 } hl_system_spec;
 
 int hl_system_new(hl_system **out, const hl_system_spec *spec, hl_error *err);
@@ -45,11 +55,12 @@ const char *hl_system_momentum(const hl_system *sys, int j); /* p_j's name */
 int hl_system_nparams(const hl_system *sys);                 /* symbolic ones */
 const char *hl_system_param(const hl_system *sys, int i);
 int hl_system_has_H(const hl_system *sys);
+const char *hl_system_step(const hl_system *sys); /* the step's name: "D" or the spec's */
 
 hl_alg_ctx *hl_system_ctx(hl_system *sys);
 hl_pool *hl_system_pool(hl_system *sys);
 const hl_alg *hl_system_H(const hl_system *sys);
-const hl_expr *hl_system_H_expr(const hl_system *sys); /* as typed, params set */
+const hl_expr *hl_system_H_expr(const hl_system *sys); /* ordered, params set */
 
 /* Parameters given a value (--param): their number, names and values. */
 int hl_system_nset(const hl_system *sys);
@@ -62,8 +73,12 @@ int hl_system_var_p(const hl_system *sys, int j); /* = N + j */
 int hl_system_var_D(const hl_system *sys);
 
 /* Read a formula of this system: its symbols must be coordinates, momenta,
- * symbolic parameters, D, or H.  Set parameters are substituted. */
+ * symbolic parameters, the step, or H.  Set parameters are substituted. */
 int hl_system_read(hl_alg *out, hl_system *sys, const char *formula, hl_error *err);
+
+/* The same for a function of the phase variables (an integral, a bracket's
+ * argument, an observable): the step is refused, pointing at it. */
+int hl_system_read_phase(hl_alg *out, hl_system *sys, const char *formula, hl_error *err);
 
 /* Read a map "X = f; P = g" giving the image of every phase variable.  An
  * image is matched to its variable by name (the left side is the variable's

@@ -106,22 +106,34 @@ enum {
 };
 
 #define HL_SCHEME_EXACT (-1)
+#define HL_SCHEME_ORDER_N (-2) /* a family: the order is the N of the name */
+
+/* The truncated Lie series is a family, lie1 .. lie20 (lie1 is explicit
+ * Euler).  20 because the step's own truncation D^(N+1)/(N+1)! g^(N+1) z is
+ * then below double rounding for any step D < 1 (1/21! = 2e-20): higher
+ * orders change no double, and their terms grow factorially (Kepler).  The
+ * adaptive Taylor integrator (flow.h) is the tool for high orders. */
+#define HL_SCHEME_LIE_MAX 20
 
 typedef struct hl_scheme_info {
     const char *name;
     const char *description;
-    int order;      /* theoretical order; for "lie" the default n;
-                       HL_SCHEME_EXACT for a scheme exact on its system */
+    int order;      /* theoretical order; HL_SCHEME_EXACT for a scheme exact
+                       on its system; HL_SCHEME_ORDER_N for the family lieN */
     unsigned flags;
 } hl_scheme_info;
 
+/* The catalog as listed: the family lieN is one entry. */
 int hl_scheme_catalog_count(void);
 const hl_scheme_info *hl_scheme_catalog(int i);
-const hl_scheme_info *hl_scheme_lookup(const char *name); /* NULL if none */
+/* A scheme's info by name, members of lieN included ("lie6": order 6);
+ * NULL if none. */
+const hl_scheme_info *hl_scheme_lookup(const char *name);
 
-/* Instantiate catalog scheme `name` for sys.  param: the order of "lie"
- * (0 = its default), ignored by the others.  HL_EINVAL for an unknown name
- * (the message lists the catalog), for a system without H, and for an
+/* Instantiate catalog scheme `name` for sys: a catalog name, or lieN with
+ * N = 1..HL_SCHEME_LIE_MAX; "lie" alone is lie<param> (param > 0), param is
+ * ignored by the others.  HL_EINVAL for an unknown name (the message lists
+ * the catalog, or the range of N), for a system without H, and for an
  * oscillator-only scheme on another system. */
 int hl_scheme_new(hl_scheme **out, const char *name, int param, hl_system *sys,
                   hl_error *err);

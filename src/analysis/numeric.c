@@ -100,7 +100,7 @@ static void ev_init(ev *E, const hl_scheme *s, int L, hl_error *err)
         E->names[j] = hl_system_coord(s->sys, j);
         E->names[N + j] = hl_system_momentum(s->sys, j);
     }
-    E->names[2 * N] = "D";
+    E->names[2 * N] = hl_system_step(s->sys);
     for (int i = 0; i < m; i++)
         E->names[2 * N + 1 + i] = s->unknown[i];
     E->names[2 * N + 1 + m] = HL_SCHEME_S;

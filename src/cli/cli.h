@@ -35,6 +35,7 @@ typedef enum cli_format { CLI_TEXT, CLI_JSON, CLI_LATEX } cli_format;
 
 typedef struct cli_opts {
     const char *H, *pairs, *map;
+    const char *step;         /* --step NAME, or NULL ("D") */
     char *params;             /* every --param joined with ',', or NULL */
     cli_format format;
     const char **integral;    /* --integral values */

@@ -13,9 +13,9 @@ static int run(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_err
     hl_alg_init(&a, ctx);
     hl_alg_init(&b, ctx);
     hl_alg_init(&r, ctx);
-    if ((st = hl_system_read(&a, sys, o->args[0], err)) != HL_OK)
+    if ((st = hl_system_read_phase(&a, sys, o->args[0], err)) != HL_OK)
         hl_error_prefix(err, "in A");
-    else if ((st = hl_system_read(&b, sys, o->args[1], err)) != HL_OK)
+    else if ((st = hl_system_read_phase(&b, sys, o->args[1], err)) != HL_OK)
         hl_error_prefix(err, "in B");
     else
         st = hl_bracket(&r, &a, &b, sys, err);

@@ -110,8 +110,11 @@ static void write_out(hl_buf *out, hl_system *sys, const hl_alg *img, hl_alg *br
         hl_json_object_end(&j);
         hl_json_finish(&j);
     } else {
-        hl_buf_printf(out, "%s%s\n", f == CLI_LATEX ? "% " : "",
-                      canonical ? "canonical for every D" : "not canonical");
+        if (canonical)
+            hl_buf_printf(out, "%scanonical for every %s\n", f == CLI_LATEX ? "% " : "",
+                          hl_system_step(sys));
+        else
+            hl_buf_printf(out, "%snot canonical\n", f == CLI_LATEX ? "% " : "");
         cli_numeric_note(out, sys, f);
     }
     for (int a = 0; a < N2; a++)

@@ -24,7 +24,7 @@ static int compute(check_result *res, hl_system *sys, const cli_opts *o, hl_erro
     res->inv = hl_alg_vec_new(n * n, ctx);
     res->integral = hl_xcalloc((size_t)n, sizeof *res->integral);
     for (int k = 0; k < n && st == HL_OK; k++)
-        if ((st = hl_system_read(&res->f[k], sys, o->integral[k], err)) != HL_OK)
+        if ((st = hl_system_read_phase(&res->f[k], sys, o->integral[k], err)) != HL_OK)
             hl_error_prefix(err, "in integral %d", k + 1);
     for (int k = 0; k < n && st == HL_OK; k++) {
         st = hl_check_integral(&res->integral[k], &res->withH[k], &res->f[k], sys, err);

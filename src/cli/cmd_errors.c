@@ -378,7 +378,8 @@ static void put_classification(hl_buf *out, const hl_errors *e, const hl_errfiel
         hl_buf_puts(out, "c·g with c = ");
         put_alg(out, &F->lambda, R, st);
         hl_buf_printf(out, ", a pure time translation: the point stays on its trajectory, "
-                           "|c|·D^%d/%d! %s in time\n", k, k, shift_direction(&F->lambda, R));
+                           "|c|·%s^%d/%d! %s in time\n", hl_system_step(R->sys), k, k,
+                      shift_direction(&F->lambda, R));
         break;
     case HL_ERRFIELD_PARALLEL:
         hl_buf_puts(out, "parallel to g: v = λ(z)·g with λ = ");
@@ -425,22 +426,25 @@ static char *tau_text(result *R, int W, hl_style st)
     for (int k = 0; k < R->tau.n; k++)
         if (!(W && k == 1))
             hl_alg_set(&c[k], &R->tau.c[k], ctx);
-    char *s = hl_format_series(c, R->tau.n - 1, "D", 0, ctx, hl_system_pool(R->sys), st);
+    char *s = hl_format_series(c, R->tau.n - 1, hl_system_step(R->sys), 0, ctx,
+                               hl_system_pool(R->sys), st);
     hl_alg_vec_free(c, R->tau.n, ctx);
     return s;
 }
 
 static void put_time(hl_buf *out, result *R, hl_style st)
 {
+    const char *D = hl_system_step(R->sys);
     if (!R->tau_ok) {
-        hl_buf_printf(out, "time reparametrisation: none (the D^%d term is not a constant "
-                           "multiple of g z: not a pure time translation)\n", R->tau_fail);
+        hl_buf_printf(out, "time reparametrisation: none (the %s^%d term is not a constant "
+                           "multiple of g z: not a pure time translation)\n", D, R->tau_fail);
         return;
     }
     char *t = tau_text(R, 0, st), *w = tau_text(R, 1, st);
-    hl_buf_printf(out, "time reparametrisation: psi_D = exp(tau(D) g) + O(D^%d)\n", R->n + 1);
-    hl_buf_printf(out, "  tau(D) = %s + O(D^%d)\n  W(D) = tau(D) - D = %s + O(D^%d)\n", t,
-                  R->n + 1, w, R->n + 1);
+    hl_buf_printf(out, "time reparametrisation: psi_%s = exp(tau(%s) g) + O(%s^%d)\n", D, D, D,
+                  R->n + 1);
+    hl_buf_printf(out, "  tau(%s) = %s + O(%s^%d)\n  W(%s) = tau(%s) - %s = %s + O(%s^%d)\n", D,
+                  t, D, R->n + 1, D, D, D, w, D, R->n + 1);
     free(t);
     free(w);
     if (R->tau_closed) {
@@ -449,11 +453,12 @@ static void put_time(hl_buf *out, result *R, hl_style st)
         hl_buf_puts(out, ", tau = ");
         put_alg(out, &R->tc[0], R, st);
         if (R->tau_series_only)
-            hl_buf_printf(out, " (identified from the series to O(D^%d), not proved)", R->n + 1);
+            hl_buf_printf(out, " (identified from the series to O(%s^%d), not proved)", D,
+                          R->n + 1);
         hl_buf_puts(out, "\n");
     }
     if (R->have_D2) {
-        hl_buf_puts(out, "  two steps of D are one step of D' = ");
+        hl_buf_printf(out, "  two steps of %s are one step of %s' = ", D, D);
         put_alg(out, &R->tc[2], R, st);
         hl_buf_puts(out, "\n");
     }
@@ -484,8 +489,9 @@ static void put_invariants(hl_buf *out, result *R, hl_style st)
 
 static void put_modified(hl_buf *out, result *R, hl_style st)
 {
-    hl_buf_printf(out, "modified vector field: exp(D f~) = psi_D + O(D^%d), "
-                       "f~ = f_1 + D f_2 + ... (f_1 = g):\n", R->nmod + 1);
+    const char *D = hl_system_step(R->sys);
+    hl_buf_printf(out, "modified vector field: exp(%s f~) = psi_%s + O(%s^%d), "
+                       "f~ = f_1 + %s f_2 + ... (f_1 = g):\n", D, D, D, R->nmod + 1, D);
     for (int j = 2; j <= R->nmod; j++) {
         hl_buf_printf(out, "  f_%d = ", j);
         put_field(out, R->mf + j * R->m, R, st);
@@ -500,8 +506,8 @@ static void put_modified(hl_buf *out, result *R, hl_style st)
     hl_alg *c = hl_alg_vec_new(R->nmod, ctx);
     for (int j = 1; j <= R->nmod; j++)
         hl_alg_set(&c[j - 1], &R->mh[j], ctx);
-    char *s = hl_format_series(c, R->nmod - 1, "D", 0, ctx, hl_system_pool(R->sys), st);
-    hl_buf_printf(out, "  modified Hamiltonian: H~ = %s + O(D^%d)\n", s, R->nmod);
+    char *s = hl_format_series(c, R->nmod - 1, D, 0, ctx, hl_system_pool(R->sys), st);
+    hl_buf_printf(out, "  modified Hamiltonian: H~ = %s + O(%s^%d)\n", s, D, R->nmod);
     free(s);
     hl_alg_vec_free(c, R->nmod, ctx);
 }
@@ -510,7 +516,7 @@ static void write_text(hl_buf *out, result *R, const err_opts *r, const cli_opts
 {
     int latex = o->format == CLI_LATEX;
     hl_style st = latex ? HL_STYLE_LATEX : HL_STYLE_TEXT;
-    const char *pre = latex ? "% " : "";
+    const char *pre = latex ? "% " : "", *D = hl_system_step(R->sys);
     hl_buf_printf(out, "%sscheme: %s\n", pre,
                   r->scheme ? r->scheme : o->map ? o->map : r->equations);
     hl_buf_printf(out, "%sH = ", pre);
@@ -531,7 +537,7 @@ static void write_text(hl_buf *out, result *R, const err_opts *r, const cli_opts
         long len = 0;
         for (int i = 0; i < R->m; i++)
             len += hl_alg_length(&R->K[i], hl_system_ctx(R->sys));
-        hl_buf_puts(out, "K(D) = psi_{-D} o d/dD psi_D in closed form:");
+        hl_buf_printf(out, "K(%s) = psi_{-%s} o d/d%s psi_%s in closed form:", D, D, D, D);
         if (len > K_PRINT_MAX)
             hl_buf_printf(out, " %ld terms, not printed (see --json)\n", len);
         else {
@@ -543,9 +549,9 @@ static void write_text(hl_buf *out, result *R, const err_opts *r, const cli_opts
             }
         }
     }
-    hl_buf_printf(out, "K(D) series to O(D^%d):\n", R->n);
+    hl_buf_printf(out, "K(%s) series to O(%s^%d):\n", D, D, R->n);
     for (int i = 0; i < R->m; i++) {
-        char *s = hl_format_series(R->Ks[i].c, R->Ks[i].n - 1, "D", 0, hl_system_ctx(R->sys),
+        char *s = hl_format_series(R->Ks[i].c, R->Ks[i].n - 1, D, 0, hl_system_ctx(R->sys),
                                    hl_system_pool(R->sys), st);
         hl_buf_printf(out, "  K_%s = %s\n", R->names[i], s);
         free(s);
@@ -560,7 +566,7 @@ static void write_text(hl_buf *out, result *R, const err_opts *r, const cli_opts
         if (R->cmap != NULL)
             put_map(out, "corrected map:", R->cmap, R, st);
         else
-            hl_buf_printf(out, "  psi_D(z) - sum_{k=2}^{%d} D^k/k! v_k(z)\n", R->correct);
+            hl_buf_printf(out, "  psi_%s(z) - sum_{k=2}^{%d} %s^k/k! v_k(z)\n", D, R->correct, D);
         put_order(out, &R->ce);
         if (R->have_cF)
             put_classification(out, &R->ce, &R->cF, R, st);

@@ -178,10 +178,11 @@ static void write_out(hl_buf *out, const hl_alg *img, const exact_checks *c, int
         hl_buf_printf(out, "  %s = %s\n", nm, s);
         free(nm), free(s);
     }
-    hl_buf_printf(out, "equals exp(D g) z to D^%d (v_2..v_%d vanish): %s\n", n, n,
+    const char *D = hl_system_step(sys);
+    hl_buf_printf(out, "equals exp(%s g) z to %s^%d (v_2..v_%d vanish): %s\n", D, D, n, n,
                   c->lie ? "yes" : "NO");
     hl_buf_printf(out, "canonical: %s\n", c->canonical ? "yes" : "NO");
-    hl_buf_printf(out, "two steps of D = one step of 2D: %s\n", c->group ? "yes" : "NO");
+    hl_buf_printf(out, "two steps of %s = one step of 2%s: %s\n", D, D, c->group ? "yes" : "NO");
     cli_numeric_note(out, sys, o->format);
 }
 
@@ -291,7 +292,8 @@ static int run_aa(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_
     hl_alg *img = hl_alg_vec_new(2, hl_system_ctx(sys));
     st = hl_exact_aa_scheme(img, &aa, sys, err);
     if (st == HL_OK) {
-        hl_buf_puts(out, "exact scheme Q = q(theta + nu D, I), P = p(theta + nu D, I):\n");
+        hl_buf_printf(out, "exact scheme Q = q(theta + nu %s, I), P = p(theta + nu %s, I):\n",
+                      hl_system_step(sys), hl_system_step(sys));
         put_images(out, img, sys, o);
         *code = CLI_OK;
     }
@@ -357,7 +359,8 @@ static int steps_check(hl_buf *out, int *code, hl_system *sys, const cli_opts *o
     if (st == HL_OK)
         st = agree_with_closed(&cok, &maxd, img, sys, err);
     if (st == HL_OK) {
-        hl_buf_puts(out, "result: Q = r(theta(q, gamma) + nu D, gamma), P = s(...):\n");
+        hl_buf_printf(out, "result: Q = r(theta(q, gamma) + nu %s, gamma), P = s(...):\n",
+                      hl_system_step(sys));
         put_images(out, img, sys, o);
         hl_alg *cf = hl_alg_vec_new(2, hl_system_ctx(sys));
         st = hl_scheme_linear_flow(cf, sys, err);
@@ -633,7 +636,7 @@ static int run_numeric_arb(hl_buf *out, int *code, hl_system *sys, double dt,
         st = hl_flow_arb_evolve(fa, t, t1, w, err);
     if (st == HL_OK) {
         double dmax = 0, ddouble = 0;
-        hl_buf_printf(out, "after 8 exact steps of D = %g in Arb:", dt);
+        hl_buf_printf(out, "after 8 exact steps of %s = %g in Arb:", hl_system_step(sys), dt);
         for (int i = 0; i < 2; i++) {
             char *nm = cli_image_name(sys, i);
             hl_buf_printf(out, " %s = ", nm);
@@ -690,7 +693,8 @@ static int run_numeric(hl_buf *out, int *code, hl_system *sys, const cli_opts *o
             hl_buf_printf(out, "orbit through the initial point: period T = %.17g, "
                                "frequency 2 pi/T = %.17g\n", T, 2 * M_PI / T);
     } else
-        hl_buf_puts(out, "H quadratic: the exact step is exp(D A) (matrix exponential)\n");
+        hl_buf_printf(out, "H quadratic: the exact step is exp(%s A) (matrix exponential)\n",
+                      hl_system_step(sys));
     /* reference: the Taylor integrator at 1e-15 */
     hl_tape *tape = NULL;
     hl_flow *fl = NULL;
@@ -711,7 +715,7 @@ static int run_numeric(hl_buf *out, int *code, hl_system *sys, const cli_opts *o
             maxd = fmax(maxd, fabs(z[i] - r[i]));
     }
     if (st == HL_OK) {
-        hl_buf_printf(out, "after 8 exact steps of D = %g:", dt);
+        hl_buf_printf(out, "after 8 exact steps of %s = %g:", hl_system_step(sys), dt);
         for (int i = 0; i < 2 * N; i++) {
             char *nm = cli_image_name(sys, i);
             hl_buf_printf(out, " %s = %.17g", nm, z[i]);

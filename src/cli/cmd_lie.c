@@ -25,7 +25,8 @@ static void write_item(hl_buf *out, hl_json *j, const lie_item *it, int order, h
         char *s = hl_format_alg(&it->terms[0], ctx, pool, HL_STYLE_SYMPY);
         hl_json_kv_string(j, "function", s);
         free(s);
-        s = hl_format_series(it->terms, order, "D", 1, ctx, pool, HL_STYLE_SYMPY);
+        s = hl_format_series(it->terms, order, hl_system_step(sys), 1, ctx, pool,
+                             HL_STYLE_SYMPY);
         hl_json_kv_string(j, "series", s);
         free(s);
         hl_json_key(j, "coefficients");
@@ -61,11 +62,14 @@ static void write_item(hl_buf *out, hl_json *j, const lie_item *it, int order, h
     char *phi = it->is_var ? (latex ? hl_symbol_latex(it->text) : hl_xstrdup(it->text))
                            : cli_show_input(it->text, sys, o->format);
     const char *wrap = it->is_var ? "%s" : (latex ? "\\left(%s\\right)" : "(%s)");
-    char *s = hl_format_series(it->terms, order, "D", 1, ctx, pool, st);
-    hl_buf_puts(out, latex ? "\\exp(D\\,\\mathfrak{g})\\, " : "exp(D 𝔤) ");
+    const char *D = hl_system_step(sys);
+    char *s = hl_format_series(it->terms, order, D, 1, ctx, pool, st);
+    char *Dl = latex ? hl_symbol_latex(D) : hl_xstrdup(D);
+    hl_buf_printf(out, latex ? "\\exp(%s\\,\\mathfrak{g})\\, " : "exp(%s 𝔤) ", Dl);
     hl_buf_printf(out, wrap, phi);
     hl_buf_printf(out, " = %s", s);
-    hl_buf_printf(out, latex ? " + O(D^{%d})\n" : " + O(D^%d)\n", order + 1);
+    hl_buf_printf(out, latex ? " + O(%s^{%d})\n" : " + O(%s^%d)\n", Dl, order + 1);
+    free(Dl);
     free(s);
     if (o->terms)
         for (int k = 0; k <= order; k++) {
@@ -92,7 +96,7 @@ static int run(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_err
     for (int i = 0; i < n && st == HL_OK; i++) {
         if (o->nof) {
             it[i].text = o->of[i];
-            if ((st = hl_system_read(&phi, sys, o->of[i], err)) != HL_OK) {
+            if ((st = hl_system_read_phase(&phi, sys, o->of[i], err)) != HL_OK) {
                 hl_error_prefix(err, "in --of");
                 break;
             }

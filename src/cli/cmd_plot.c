@@ -128,7 +128,7 @@ int cmd_plot(int argc, char **argv)
     if (rc >= 0)
         return rc;
     rc = cli_parse(&o, argc, argv, 0, cmd);
-    if (rc < 0 && (o.H != NULL || o.pairs != NULL || o.params != NULL))
+    if (rc < 0 && (o.H != NULL || o.pairs != NULL || o.params != NULL || o.step != NULL))
         rc = cli_usage(cmd, "plot takes no system options: the CSV files say everything");
     if (rc < 0 && o.nargs == 0)
         rc = cli_usage(cmd, "give at least one CSV file written by hamlie run");

@@ -152,7 +152,7 @@ int cmd_reproduce(int argc, char **argv)
     if (rc >= 0)
         return rc;
     rc = cli_parse(&o, argc, argv, 0, cmd);
-    if (rc < 0 && (o.H != NULL || o.pairs != NULL || o.params != NULL))
+    if (rc < 0 && (o.H != NULL || o.pairs != NULL || o.params != NULL || o.step != NULL))
         rc = cli_usage(cmd, "reproduce takes no system options: the paper fixes them");
     if (rc < 0 && o.nargs > 0)
         rc = cli_usage(cmd, "unexpected argument '%s'", o.args[0]);

@@ -31,7 +31,8 @@ const char cmd_run_help[] =
     "  --scheme NAME        a scheme of the catalog (hamlie schemes lists them)\n"
     "  --map 'X = ...; P = ...'   the user's explicit map (D is the step)\n"
     "  --equations '...'    the user's implicit scheme, e.g. '(X-x)/D = ...; ...'\n"
-    "  -n, --order N        the order of --scheme lie with --dt (default 4)\n"
+    "  -n, --order N        the order of --scheme lie with --dt (default 4): the\n"
+    "                       same as --scheme lieN\n"
     "  --dt STEP            the step (> 0); t/dt must be a whole number\n"
     "  --t TIME             the final time (>= 0)\n"
     "  --init x=1,p=0       the initial point (values may be formulas: q=pi/2)\n"
@@ -56,7 +57,8 @@ const char cmd_run_help[] =
     "\n"
     "--scheme lie with --tol (and no --dt, or --dt as the output spacing) is the\n"
     "adaptive Taylor (Lie series) integrator; --scheme lie with --dt alone is the\n"
-    "fixed-step Lie series truncated after D^n.  Without --dt the adaptive run\n"
+    "fixed-step Lie series truncated after D^n, the same as --scheme lieN with\n"
+    "N = n (lie1 .. lie20, always fixed-step).  Without --dt the adaptive run\n"
     "writes 1001 rows.\n"
     "  --digits D           the adaptive integrator in Arb at about D digits (values\n"
     "                       printed with D digits; the initial values are read at\n"
@@ -126,6 +128,9 @@ static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
         if (r->scheme == NULL || strcmp(r->scheme, "lie") != 0 || r->orders != NULL)
             return cli_usage(cmd, "--digits is for the adaptive integrator: --scheme lie");
     }
+    if (o->have_order && (r->scheme == NULL || strcmp(r->scheme, "lie") != 0))
+        return cli_usage(cmd, "-n is the order of --scheme lie with --dt; a member of the "
+                              "family names its order (--scheme lie6)");
     if (r->formats != NULL && r->plot == NULL)
         return cli_usage(cmd, "--format is for the figures of --plot DIR");
     if (r->plot != NULL && (r->orders != NULL || r->digits_s != NULL))
@@ -394,7 +399,9 @@ static void json_head(hl_buf *b, hl_system *sys, const run_opts *r, const cli_op
         hl_buf_puts(b, i ? ", " : "");
         hl_json_escape(b, hl_system_momentum(sys, i));
     }
-    hl_buf_puts(b, "], \"parameters\": [], \"step\": \"D\"}");
+    hl_buf_puts(b, "], \"parameters\": [], \"step\": ");
+    hl_json_escape(b, hl_system_step(sys));
+    hl_buf_puts(b, "}");
     jkv_str(b, "H_input", o->H);
     jkv_str(b, "scheme", r->scheme != NULL ? r->scheme : o->map != NULL ? "map" : "equations");
     jkv_str(b, "integrator", adaptive(r) ? "adaptive-taylor" : "fixed-step");
@@ -843,7 +850,7 @@ static int build(hl_run **run, hl_scheme **sch, hl_exact_flow **ex, hl_system *s
             if ((st = hl_scheme_from_equations(sch, r->equations, sys, err)) != HL_OK)
                 hl_error_prefix(err, "in --equations");
         } else
-            st = hl_scheme_new(sch, r->scheme, o->have_order ? o->order : 0, sys, err);
+            st = hl_scheme_new(sch, r->scheme, o->have_order ? o->order : 4, sys, err);
     }
     if (st == HL_OK && *run == NULL)
         st = hl_run_new(run, sys, *sch, err);

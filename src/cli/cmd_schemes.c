@@ -11,7 +11,9 @@ const char cmd_schemes_help[] =
     "theoretical order, whether the scheme is symplectic, preserves H exactly,\n"
     "is implicit (for a general H), and a description.  Schemes marked\n"
     "'oscillator' are defined only for H = (p^2 + x^2)/2.  stormer-verlet and\n"
-    "verlet are other names of stormer-verlet-kdk.\n"
+    "verlet are other names of stormer-verlet-kdk.  lieN is a family: name a\n"
+    "member by its order, lie1 (explicit Euler) to lie20 (run --scheme lie alone\n"
+    "is the adaptive Taylor integrator).\n"
     "\n"
     "  --json             print a JSON object (schema: docs/json.md)\n"
     "  --latex            print the table as a LaTeX tabular\n"
@@ -25,6 +27,8 @@ static void order_text(char *s, size_t n, const hl_scheme_info *in)
 {
     if (in->order == HL_SCHEME_EXACT)
         snprintf(s, n, "exact");
+    else if (in->order == HL_SCHEME_ORDER_N)
+        snprintf(s, n, "N");
     else
         snprintf(s, n, "%d", in->order);
 }
@@ -41,11 +45,18 @@ static void write_json(hl_buf *out)
         const hl_scheme_info *in = hl_scheme_catalog(i);
         hl_json_object_begin(&j);
         hl_json_kv_string(&j, "name", in->name);
-        if (in->order == HL_SCHEME_EXACT) {
+        if (in->order == HL_SCHEME_EXACT || in->order == HL_SCHEME_ORDER_N) {
             hl_json_key(&j, "order");
             hl_json_null(&j);
         } else
             hl_json_kv_int(&j, "order", in->order);
+        if (in->order == HL_SCHEME_ORDER_N) { /* a family: its members' orders */
+            hl_json_key(&j, "order_range");
+            hl_json_array_begin(&j);
+            hl_json_int(&j, 1);
+            hl_json_int(&j, HL_SCHEME_LIE_MAX);
+            hl_json_array_end(&j);
+        }
         hl_json_kv_bool(&j, "exact", in->order == HL_SCHEME_EXACT);
         hl_json_kv_bool(&j, "symplectic", (in->flags & HL_SCHEME_SYMPLECTIC) != 0);
         hl_json_kv_bool(&j, "preserves_H", (in->flags & HL_SCHEME_PRESERVES_H) != 0);
@@ -116,7 +127,7 @@ int cmd_schemes(int argc, char **argv)
     int rc = cli_parse(&o, argc, argv, 0, cmd);
     if (rc < 0 && o.nargs > 0)
         rc = cli_usage(cmd, "unexpected argument '%s'", o.args[0]);
-    if (rc < 0 && (o.H != NULL || o.pairs != NULL || o.params != NULL))
+    if (rc < 0 && (o.H != NULL || o.pairs != NULL || o.params != NULL || o.step != NULL))
         rc = cli_usage(cmd, "schemes takes no system options");
     if (rc < 0) {
         hl_buf out;

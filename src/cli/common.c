@@ -48,7 +48,7 @@ int cli_emit(hl_buf *out, int code)
 
 int cli_system(hl_system **sys, const cli_opts *o, const char *const *extra)
 {
-    hl_system_spec spec = {o->H, o->pairs, o->params, extra};
+    hl_system_spec spec = {o->H, o->pairs, o->params, extra, o->step};
     hl_error err;
     hl_error_clear(&err);
     if (hl_system_new(sys, &spec, &err) != HL_OK) {
@@ -56,6 +56,8 @@ int cli_system(hl_system **sys, const cli_opts *o, const char *const *extra)
             hl_error_prefix(&err, "in --pairs");
         else if (err.src != NULL && o->params != NULL && err.src == o->params)
             hl_error_prefix(&err, "in --param");
+        else if (err.src != NULL && o->step != NULL && err.src == o->step)
+            hl_error_prefix(&err, "in --step");
         return cli_fail(&err);
     }
     return CLI_OK;
@@ -79,7 +81,7 @@ void cli_json_system(hl_json *j, hl_system *sys)
     json_names(j, "coordinates", sys, hl_system_coord, n);
     json_names(j, "momenta", sys, hl_system_momentum, n);
     json_names(j, "parameters", sys, hl_system_param, hl_system_nparams(sys));
-    hl_json_kv_string(j, "step", "D");
+    hl_json_kv_string(j, "step", hl_system_step(sys));
     hl_json_object_end(j);
     hl_json_key(j, "parameter_values");
     hl_json_object_begin(j);

@@ -10,13 +10,17 @@
     "                     px,py.. with x,y..; p1..pN with q1..qN; p with q, else x)\n" \
     "  --param k=2        give a parameter a constant value (repeatable; other\n" \
     "                     symbols stay symbolic parameters)\n"                    \
+    "  --step NAME        the step's name (default D; e.g. --step h when D is a\n" \
+    "                     parameter such as a Morse depth)\n"                    \
     "  --json             print a JSON object (schema: docs/json.md)\n"         \
     "  --latex            print formulas as LaTeX\n"                             \
     "  -h, --help         show this help\n"                                      \
     "\n"                                                                       \
     "Formulas use + - * / ^ (or **), sin cos tan exp log sqrt atan asin acos\n" \
-    "sinh cosh tanh, atan2(y, x) (the angle of (x, y), in (-pi, pi]), pi;\n"   \
-    "D is the step, H names the Hamiltonian.\n"
+    "sinh cosh tanh, atan2(y, x) (the angle of (x, y), in (-pi, pi]), pi;
+"   \
+    "D is the step (--step renames it), H names the Hamiltonian.
+"
 
 static const cli_command commands[] = {
     {"generator", cmd_generator, "the evolution generator g of a Hamiltonian",

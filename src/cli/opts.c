@@ -10,7 +10,7 @@
 #include "cli/cli.h"
 
 enum {
-    O_PAIRS = 256, O_PARAM, O_JSON, O_LATEX, O_INTEGRAL, O_MAP, O_OF, O_TERMS
+    O_PAIRS = 256, O_STEP, O_PARAM, O_JSON, O_LATEX, O_INTEGRAL, O_MAP, O_OF, O_TERMS
 };
 
 int cli_usage(const cli_command *cmd, const char *fmt, ...)
@@ -66,7 +66,7 @@ static int takes(unsigned accept, unsigned bit, const char *opt, const cli_comma
 /* Does this option take its value in the next argument? */
 static int wants_value(const char *a)
 {
-    static const char *const with_value[] = {"--hamiltonian", "--pairs", "--param",
+    static const char *const with_value[] = {"--hamiltonian", "--pairs", "--step", "--param",
                                              "--integral", "--map", "--order", "--of"};
     if (strcmp(a, "-H") == 0 || strcmp(a, "-n") == 0)
         return 1;
@@ -135,6 +135,7 @@ static int parse_opts(cli_opts *o, int argc, char **argv, unsigned accept,
     static const struct option longopts[] = {
         {"hamiltonian", required_argument, NULL, 'H'},
         {"pairs", required_argument, NULL, O_PAIRS},
+        {"step", required_argument, NULL, O_STEP},
         {"param", required_argument, NULL, O_PARAM},
         {"json", no_argument, NULL, O_JSON},
         {"latex", no_argument, NULL, O_LATEX},
@@ -161,6 +162,11 @@ static int parse_opts(cli_opts *o, int argc, char **argv, unsigned accept,
             break;
         case O_PAIRS:
             o->pairs = optarg;
+            break;
+        case O_STEP:
+            if (o->step != NULL)
+                rc = cli_usage(cmd, "--step given twice");
+            o->step = optarg;
             break;
         case O_PARAM:
             hl_buf_printf(&params, "%s%s", params.len ? "," : "", optarg);

@@ -63,6 +63,17 @@ int hl_exact_aa_read(hl_exact_aa *aa, hl_system *sys, const char *spec, hl_error
     if (miss != NULL)
         return hl_error_set(err, HL_EINVAL, spec, -1, 0, "the action-angle map lacks '%s'",
                             miss);
+    /* The map is of phase space alone: the step in it would be taken for the
+     * step, not for a parameter of that name. */
+    const char *step = hl_system_step(sys);
+    for (int i = 0; i < n; i++)
+        if (hl_expr_has_symbol(eq[i].rhs, step))
+            return hl_error_set(err, HL_EINVAL, spec, hl_symbol_pos(spec, step),
+                                (int)strlen(step),
+                                "'%s' is the step's name and cannot appear in the "
+                                "action-angle map; if it is a parameter, give the step "
+                                "another name (--step h)",
+                                step);
     return HL_OK;
 }
 
@@ -166,7 +177,7 @@ int hl_exact_aa_scheme(hl_alg *images, const hl_exact_aa *aa, hl_system *sys, hl
     hl_pool *pool = hl_system_pool(sys);
     /* theta -> theta(q,p) + nu(I(q,p)) D, I -> I(q,p) */
     const hl_expr *nu = in_qp(pool, aa->nu, aa->theta, aa->I);
-    const hl_expr *th = hl_add(pool, aa->theta, hl_mul(pool, nu, hl_sym(pool, "D")));
+    const hl_expr *th = hl_add(pool, aa->theta, hl_mul(pool, nu, hl_sym(pool, hl_system_step(sys))));
     int st = alg_of(&images[0], in_qp(pool, aa->q, th, aa->I), sys, err);
     if (st == HL_OK)
         st = alg_of(&images[1], in_qp(pool, aa->p, th, aa->I), sys, err);

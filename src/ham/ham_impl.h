@@ -11,6 +11,7 @@ typedef struct ham_setparam {
 } ham_setparam;
 
 struct hl_system {
+    char *step;          /* the step's name ("D" unless the spec says) */
     int n;               /* degrees of freedom */
     char **q, **p;       /* names of coordinates and momenta (n each) */
     int nparam;          /* symbolic parameters */
@@ -18,10 +19,10 @@ struct hl_system {
     int nset;            /* parameters with values */
     ham_setparam *set;
     hl_pool *pool;
-    hl_alg_ctx *ctx;     /* base symbols q.., p.., params.., D */
+    hl_alg_ctx *ctx;     /* base symbols q.., p.., params.., the step */
     int has_H;
     hl_alg H;
-    const hl_expr *H_expr; /* as typed, set parameters substituted */
+    const hl_expr *H_expr; /* terms ordered (hl_expr_ordered), set parameters substituted */
     int have_field;      /* xi, eta computed (lazily, by ham_field) */
     hl_alg *xi, *eta;
 };
@@ -34,5 +35,10 @@ int ham_field(hl_system *sys, hl_error *err);
  * parameters, convert. */
 int ham_read_expr(hl_alg *out, hl_system *sys, const hl_expr *e, const char *src,
                   int offset, hl_error *err);
+
+/* The error for the step's name found in a formula that cannot hold it
+ * (what: "the Hamiltonian", "a function of the phase variables"). */
+int ham_step_refused(const hl_system *sys, const char *src, int offset, const char *what,
+                     hl_error *err);
 
 #endif

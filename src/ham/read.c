@@ -9,7 +9,7 @@
 
 static int is_known(const hl_system *sys, const char *s)
 {
-    if (strcmp(s, "D") == 0 || hl_alg_ctx_index(sys->ctx, s) >= 0)
+    if (strcmp(s, sys->step) == 0 || hl_alg_ctx_index(sys->ctx, s) >= 0)
         return 1;
     for (int i = 0; i < sys->nset; i++)
         if (strcmp(sys->set[i].name, s) == 0)
@@ -98,6 +98,30 @@ int hl_system_read(hl_alg *out, hl_system *sys, const char *formula, hl_error *e
     int st = hl_parse(&e, sys->pool, formula, err);
     if (st != HL_OK)
         return st;
+    return ham_read_expr(out, sys, e, formula, 0, err);
+}
+
+int ham_step_refused(const hl_system *sys, const char *src, int offset, const char *what,
+                     hl_error *err)
+{
+    int pos = src ? hl_symbol_pos(src + offset, sys->step) : -1;
+    const char *other = strcmp(sys->step, "h") != 0 ? "h" : "dt";
+    return hl_error_set(err, HL_EINVAL, pos >= 0 ? src : NULL, pos >= 0 ? pos + offset : -1,
+                        (int)strlen(sys->step),
+                        "'%s' is the step's name and cannot appear in %s; if it is a "
+                        "parameter (a Morse depth D, say), give the step another name: "
+                        "--step %s",
+                        sys->step, what, other);
+}
+
+int hl_system_read_phase(hl_alg *out, hl_system *sys, const char *formula, hl_error *err)
+{
+    const hl_expr *e;
+    int st = hl_parse(&e, sys->pool, formula, err);
+    if (st != HL_OK)
+        return st;
+    if (hl_expr_has_symbol(e, sys->step))
+        return ham_step_refused(sys, formula, 0, "a function of the phase variables", err);
     return ham_read_expr(out, sys, e, formula, 0, err);
 }
 

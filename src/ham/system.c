@@ -47,7 +47,7 @@ static void names_clear(namelist *l)
     l->s = NULL;
 }
 
-static void names_of_expr(namelist *l, const hl_expr *e)
+static void names_of_expr(namelist *l, const hl_expr *e, const char *step)
 {
     int k = hl_expr_symbols(e, NULL, 0);
     if (k <= 0)
@@ -55,16 +55,16 @@ static void names_of_expr(namelist *l, const hl_expr *e)
     const char **v = hl_xmalloc((size_t)k * sizeof *v);
     hl_expr_symbols(e, v, k);
     for (int i = 0; i < k; i++)
-        if (strcmp(v[i], "D") != 0 && strcmp(v[i], "H") != 0)
+        if (strcmp(v[i], step) != 0 && strcmp(v[i], "H") != 0)
             names_add(l, v[i]);
     free(v);
 }
 
-/* Names that cannot be a phase variable or a parameter. */
-static const char *reserved_why(const char *s, int len)
+/* Names that cannot be a phase variable or a parameter (nor the step). */
+static const char *reserved_why(const char *step, const char *s, int len)
 {
-    if (len == 1 && s[0] == 'D')
-        return "'D' is the step";
+    if (step != NULL && (int)strlen(step) == len && strncmp(s, step, (size_t)len) == 0)
+        return "it is the step's name";
     if (len == 1 && s[0] == 'H')
         return "'H' names the Hamiltonian";
     if (len == 2 && s[0] == 'p' && s[1] == 'i')
@@ -92,13 +92,14 @@ static int skip_space(const char *s, int i)
 }
 
 /* Read one name at s[*i] for an option text; error naming what was wanted. */
-static int read_name(char **out, const char *src, int *i, const char *what, hl_error *err)
+static int read_name(char **out, const hl_system *sys, const char *src, int *i,
+                     const char *what, hl_error *err)
 {
     *i = skip_space(src, *i);
     int len = ident_len(src + *i);
     if (len == 0)
         return hl_error_set(err, HL_EPARSE, src, *i, 1, "expected %s here", what);
-    const char *why = reserved_why(src + *i, len);
+    const char *why = reserved_why(sys->step, src + *i, len);
     if (why != NULL)
         return hl_error_set(err, HL_EINVAL, src, *i, len, "'%.*s' cannot be %s: %s", len,
                             src + *i, what, why);
@@ -133,7 +134,7 @@ static int parse_pairs(hl_system *sys, const char *src, hl_error *err)
     for (;;) {
         char *q = NULL, *p = NULL;
         int qpos = skip_space(src, i), st;
-        if ((st = read_name(&q, src, &i, "a coordinate", err)) != HL_OK)
+        if ((st = read_name(&q, sys, src, &i, "a coordinate", err)) != HL_OK)
             return st;
         if (src[i] != ':') {
             free(q);
@@ -150,7 +151,7 @@ static int parse_pairs(hl_system *sys, const char *src, hl_error *err)
             free(q);
             return HL_EINVAL;
         }
-        if ((st = read_name(&p, src, &i, "a momentum", err)) != HL_OK) {
+        if ((st = read_name(&p, sys, src, &i, "a momentum", err)) != HL_OK) {
             free(q);
             return st;
         }
@@ -193,10 +194,66 @@ static int numbered(const char *s, char c)
     return 1;
 }
 
-static int cmp_index(const void *a, const void *b)
+/* The fixed order of inferred coordinates (and of parameters), whatever the
+ * order in which H mentions them: x, y, z first; then names with a numeric
+ * index (q1, q2, ..., q10), by their letters and then by the index as a
+ * number; then the rest by name. */
+static int name_class(const char *s, int *stem)
 {
-    long x = atol(*(char *const *)a + 1), y = atol(*(char *const *)b + 1);
-    return (x > y) - (x < y);
+    if (s[1] == '\0' && s[0] >= 'x' && s[0] <= 'z')
+        return s[0] - 'x';
+    int i = (int)strlen(s);
+    while (i > 0 && isdigit((unsigned char)s[i - 1]))
+        i--;
+    *stem = i;
+    return i > 0 && s[i] != '\0' ? 3 : 4;
+}
+
+/* Decimal digit strings compared as numbers (leading zeros ignored). */
+static int cmp_digits(const char *a, const char *b)
+{
+    while (*a == '0' && a[1] != '\0')
+        a++;
+    while (*b == '0' && b[1] != '\0')
+        b++;
+    size_t la = strlen(a), lb = strlen(b);
+    if (la != lb)
+        return la < lb ? -1 : 1;
+    return strcmp(a, b);
+}
+
+static int cmp_names(const char *a, const char *b)
+{
+    int sa = 0, sb = 0, ca = name_class(a, &sa), cb = name_class(b, &sb);
+    if (ca != cb)
+        return ca - cb;
+    if (ca == 3) {
+        int c = strncmp(a, b, (size_t)(sa < sb ? sa : sb));
+        if (c == 0 && sa != sb)
+            c = sa - sb;
+        if (c == 0)
+            c = cmp_digits(a + sa, b + sb);
+        if (c != 0)
+            return c;
+    }
+    return strcmp(a, b);
+}
+
+static int cmp_name_ptrs(const void *a, const void *b)
+{
+    return cmp_names(*(char *const *)a, *(char *const *)b);
+}
+
+/* Put inferred pairs in the fixed order of their coordinates (insertion
+ * sort: a handful of pairs, and q and p move together). */
+static void sort_pairs(hl_system *sys)
+{
+    for (int i = 1; i < sys->n; i++)
+        for (int j = i; j > 0 && cmp_names(sys->q[j - 1], sys->q[j]) > 0; j--) {
+            char *q = sys->q[j], *p = sys->p[j];
+            sys->q[j] = sys->q[j - 1], sys->p[j] = sys->p[j - 1];
+            sys->q[j - 1] = q, sys->p[j - 1] = p;
+        }
 }
 
 static int infer_pairs(hl_system *sys, const namelist *syms, const char *Hsrc, hl_error *err)
@@ -217,8 +274,10 @@ static int infer_pairs(hl_system *sys, const namelist *syms, const char *Hsrc, h
             add_pair(sys, hl_xstrdup(q), hl_xstrdup(pn));
         }
     }
-    if (sys->n > 0)
+    if (sys->n > 0) {
+        sort_pairs(sys);
         return HL_OK;
+    }
 
     /* q1..qN with p1..pN, in the order of the index. */
     namelist k = {0, 0, NULL};
@@ -229,7 +288,7 @@ static int infer_pairs(hl_system *sys, const namelist *syms, const char *Hsrc, h
             names_add(&k, buf);
         }
     if (k.n > 0) {
-        qsort(k.s, (size_t)k.n, sizeof *k.s, cmp_index);
+        qsort(k.s, (size_t)k.n, sizeof *k.s, cmp_name_ptrs);
         for (int i = 0; i < k.n; i++) {
             char buf[64];
             snprintf(buf, sizeof buf, "p%s", k.s[i] + 1);
@@ -297,7 +356,7 @@ static int parse_params(hl_system *sys, const char *src, const namelist *syms, h
     for (;;) {
         char *name = NULL;
         int npos = skip_space(src, i), st;
-        if ((st = read_name(&name, src, &i, "a parameter name", err)) != HL_OK)
+        if ((st = read_name(&name, sys, src, &i, "a parameter name", err)) != HL_OK)
             return st;
         int len = (int)strlen(name);
         if (phase_index(sys, name) >= 0) {
@@ -392,7 +451,9 @@ static int collect_symbols(namelist *syms, hl_system *sys, const hl_system_spec 
         if (hl_expr_has_symbol(*H, "H"))
             return hl_error_set(err, HL_EINVAL, spec->H, hl_symbol_pos(spec->H, "H"), 1,
                                 "the Hamiltonian cannot refer to 'H'");
-        names_of_expr(syms, *H);
+        if (hl_expr_has_symbol(*H, sys->step))
+            return ham_step_refused(sys, spec->H, 0, "the Hamiltonian", err);
+        names_of_expr(syms, *H, sys->step);
     }
     for (int k = 0; spec->extra != NULL && spec->extra[k] != NULL; k++) {
         const char *src = spec->extra[k];
@@ -413,7 +474,7 @@ static int collect_symbols(namelist *syms, hl_system *sys, const hl_system_spec 
             return st;
         }
         for (int i = 0; i < n; i++)
-            names_of_expr(syms, items[i].rhs ? items[i].rhs : items[i].lhs);
+            names_of_expr(syms, items[i].rhs ? items[i].rhs : items[i].lhs, sys->step);
         free(items), free(copy);
     }
     return HL_OK;
@@ -426,6 +487,8 @@ static int build_ctx(hl_system *sys, const namelist *syms)
             sys->param = hl_xrealloc(sys->param, (size_t)(sys->nparam + 1) * sizeof *sys->param);
             sys->param[sys->nparam++] = hl_xstrdup(syms->s[i]);
         }
+    if (sys->nparam > 1)
+        qsort(sys->param, (size_t)sys->nparam, sizeof *sys->param, cmp_name_ptrs);
     int nb = 2 * sys->n + sys->nparam + 1;
     const char **names = hl_xmalloc((size_t)nb * sizeof *names);
     for (int j = 0; j < sys->n; j++) {
@@ -434,9 +497,9 @@ static int build_ctx(hl_system *sys, const namelist *syms)
     }
     for (int i = 0; i < sys->nparam; i++)
         names[2 * sys->n + i] = sys->param[i];
-    names[nb - 1] = "D";
+    names[nb - 1] = sys->step;
     sys->ctx = hl_alg_ctx_new(nb, names, 0);
-    hl_alg_ctx_set_step(sys->ctx, nb - 1); /* print by powers of D */
+    hl_alg_ctx_set_step(sys->ctx, nb - 1); /* print by powers of the step */
     free(names);
     return sys->ctx != NULL ? HL_OK : HL_ENOMEM;
 }
@@ -456,6 +519,24 @@ static const hl_expr *subst_params(hl_system *sys, const hl_expr *e)
     return e;
 }
 
+/* The step's name from the spec: a name that is no function, H or pi. */
+static int set_step(hl_system *sys, const char *name, hl_error *err)
+{
+    if (name == NULL)
+        name = "D";
+    int len = ident_len(name);
+    if (len == 0 || name[len] != '\0')
+        return hl_error_set(err, HL_EINVAL, name, len, 1,
+                            "the step's name must be a name (letters, digits, '_'), "
+                            "like D or h");
+    const char *why = reserved_why(NULL, name, len);
+    if (why != NULL)
+        return hl_error_set(err, HL_EINVAL, name, 0, len,
+                            "'%s' cannot be the step's name: %s", name, why);
+    sys->step = hl_xstrdup(name);
+    return HL_OK;
+}
+
 int hl_system_new(hl_system **out, const hl_system_spec *spec, hl_error *err)
 {
     hl_system *sys = hl_xcalloc(1, sizeof *sys);
@@ -465,6 +546,8 @@ int hl_system_new(hl_system **out, const hl_system_spec *spec, hl_error *err)
 
     *out = NULL;
     sys->pool = hl_pool_new();
+    if ((st = set_step(sys, spec->step, err)) != HL_OK)
+        goto fail;
     if ((st = collect_symbols(&syms, sys, spec, &H, err)) != HL_OK)
         goto fail;
     if (spec->pairs != NULL)
@@ -481,6 +564,8 @@ int hl_system_new(hl_system **out, const hl_system_spec *spec, hl_error *err)
     if (spec->params != NULL && (st = check_param_values(sys, spec->params, err)) != HL_OK)
         goto fail;
     if (H != NULL) {
+        /* Terms in a fixed order: how H is written changes no number. */
+        H = hl_expr_ordered(sys->pool, H);
         sys->H_expr = subst_params(sys, H);
         if ((st = ham_read_expr(&sys->H, sys, H, spec->H, 0, err)) != HL_OK) {
             hl_error_prefix(err, "in the Hamiltonian");
@@ -517,6 +602,7 @@ void hl_system_free(hl_system *sys)
         free(sys->set[i].name);
     free(sys->set);
     hl_pool_free(sys->pool);
+    free(sys->step);
     free(sys);
 }
 
@@ -526,6 +612,7 @@ const char *hl_system_momentum(const hl_system *sys, int j) { return sys->p[j]; 
 int hl_system_nparams(const hl_system *sys) { return sys->nparam; }
 const char *hl_system_param(const hl_system *sys, int i) { return sys->param[i]; }
 int hl_system_has_H(const hl_system *sys) { return sys->has_H; }
+const char *hl_system_step(const hl_system *sys) { return sys->step; }
 hl_alg_ctx *hl_system_ctx(hl_system *sys) { return sys->ctx; }
 hl_pool *hl_system_pool(hl_system *sys) { return sys->pool; }
 const hl_alg *hl_system_H(const hl_system *sys) { return sys->has_H ? &sys->H : NULL; }

@@ -102,7 +102,7 @@ static hl_status run_scheme(traj *tr, int k, hl_error *err)
     hl_system *sys = NULL;
     hl_scheme *sc = NULL;
     hl_run *r = NULL;
-    hl_system_spec spec = {"(p^2 + x^2)/2", "x:p", NULL, NULL};
+    hl_system_spec spec = {"(p^2 + x^2)/2", "x:p", NULL, NULL, NULL};
     double z0[2];
     memset(tr, 0, sizeof *tr);
     int st = hl_system_new(&sys, &spec, err);

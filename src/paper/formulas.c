@@ -228,7 +228,7 @@ static int expand_catalog(hl_series **psi, hl_errors *e, const char *name, const
 
 static int new_system(hl_system **sys, const char *H, const char *pairs, hl_error *err)
 {
-    hl_system_spec spec = {H, pairs, NULL, NULL};
+    hl_system_spec spec = {H, pairs, NULL, NULL, NULL};
     return hl_system_new(sys, &spec, err);
 }
 

@@ -195,7 +195,7 @@ static int fused_ready(hl_run *r, long nsteps)
         const hl_expr **outs = hl_xmalloc((size_t)(n2 + 1) * sizeof *outs);
         const char **in = hl_xmalloc((size_t)(n2 + 1) * sizeof *in);
         memcpy(in, r->names, (size_t)n2 * sizeof *in);
-        in[n2] = "D";
+        in[n2] = hl_system_step(r->sys);
         outs[n2] = r->outs[0];
         if (hl_scheme_step_exprs(outs, r->scheme, NULL) != HL_OK ||
             hl_tape_new(&r->fused, outs, n2 + 1, in, n2 + 1, NULL) != HL_OK)

@@ -206,7 +206,7 @@ static const hl_expr *at_zero(const hl_scheme *s, hl_pool *pool, const hl_expr *
     }
     e = hl_expr_subst(pool, e, k, names, vals);
     k = 0;
-    names[k] = "D";
+    names[k] = hl_system_step(s->sys);
     vals[k++] = zero;
     for (int u = 0; u < s->m; u++)
         if (s->z0[u] != NULL) {

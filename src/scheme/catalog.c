@@ -52,7 +52,10 @@ static const entry catalog[] = {
     {{"itoh-abe", "Itoh-Abe coordinate-increment discrete gradient (q_1..q_N, p_1..p_N)", 1,
       S_H | S_IMPL},
      NULL},
-    {{"lie", "Lie series exp(D g) z truncated after D^n (default n = 4)", 4, 0}, NULL},
+    {{"lieN",
+      "Lie series exp(D g) z truncated after D^N: lie1 (explicit Euler), lie2, ..., lie20",
+      HL_SCHEME_ORDER_N, 0},
+     NULL},
     {{"yoshida4", "Yoshida's order-4 composition of Stormer-Verlet (kick-drift-kick)", 4,
       S_SYMP | S_IMPL | S_SEP},
      NULL},
@@ -83,6 +86,29 @@ const hl_scheme_info *hl_scheme_catalog(int i)
     return i >= 0 && i < NCAT ? &catalog[i].info : NULL;
 }
 
+/* The members of the family lieN, one info each (their order is N). */
+#define LIE_INFO(n) {"lie" #n, "Lie series exp(D g) z truncated after D^" #n, n, 0}
+static const hl_scheme_info lie_info[HL_SCHEME_LIE_MAX] = {
+    LIE_INFO(1),  LIE_INFO(2),  LIE_INFO(3),  LIE_INFO(4),  LIE_INFO(5),
+    LIE_INFO(6),  LIE_INFO(7),  LIE_INFO(8),  LIE_INFO(9),  LIE_INFO(10),
+    LIE_INFO(11), LIE_INFO(12), LIE_INFO(13), LIE_INFO(14), LIE_INFO(15),
+    LIE_INFO(16), LIE_INFO(17), LIE_INFO(18), LIE_INFO(19), LIE_INFO(20)};
+
+/* "lie<digits>": N (any value, to be checked against the range), or 0 when
+ * name is not of that shape. */
+static long lie_order(const char *name)
+{
+    if (strncmp(name, "lie", 3) != 0 || name[3] < '0' || name[3] > '9')
+        return 0;
+    long n = 0;
+    for (const char *c = name + 3; *c; c++) {
+        if (*c < '0' || *c > '9')
+            return 0;
+        n = n < 1000000 ? 10 * n + (*c - '0') : n; /* big is out of range anyway */
+    }
+    return n > 0 ? n : -1;
+}
+
 /* Names a user may reasonably type for a catalog scheme: plain Störmer–Verlet
  * is the velocity (kick-drift-kick) form, as in HLW and most codes. */
 static const struct {
@@ -102,6 +128,9 @@ static const entry *find(const char *name)
 
 const hl_scheme_info *hl_scheme_lookup(const char *name)
 {
+    long n = lie_order(name);
+    if (n >= 1 && n <= HL_SCHEME_LIE_MAX)
+        return &lie_info[n - 1];
     const entry *e = find(name);
     return e ? &e->info : NULL;
 }
@@ -114,15 +143,18 @@ const char *hl_scheme_text(const char *name)
 
 /* ---- reading a language text for a system -------------------------------- */
 
-static int read_text(hl_scheme **out, const char *name, const char *text, hl_system *sys,
-                     hl_error *err)
+/* step_word: the step's name in the text, "D" in the catalog's texts, the
+ * system's step name in the user's. */
+static int read_text(hl_scheme **out, const char *name, const char *text, const char *step_word,
+                     hl_system *sys, hl_error *err)
 {
     sb b;
     sb_init(&b, sys, name);
     int N = hl_system_ndof(sys);
     const hl_expr **pt = hl_xmalloc((size_t)(2 * N + 1) * sizeof *pt);
     scheme_point(pt, sys);
-    scheme_frame f = {pt, pt + N, b.s->iQ, b.s->iP, hl_sym(b.pool, "D"), ""};
+    scheme_frame f = {pt, pt + N, b.s->iQ, b.s->iP, hl_sym(b.pool, hl_system_step(sys)), "",
+                      step_word};
     int st = scheme_read(&b, text, &f, err);
     free(pt);
     if (st != HL_OK) {
@@ -135,7 +167,7 @@ static int read_text(hl_scheme **out, const char *name, const char *text, hl_sys
 int hl_scheme_from_text(hl_scheme **out, const char *def, hl_system *sys, hl_error *err)
 {
     *out = NULL;
-    return read_text(out, "user", def, sys, err);
+    return read_text(out, "user", def, hl_system_step(sys), sys, err);
 }
 
 /* ---- compositions --------------------------------------------------------- */
@@ -177,8 +209,8 @@ int hl_scheme_compose(hl_scheme **out, const char *name, const char *text, int r
             break;
         hl_buf_printf(&nb, "c%d.", i + 1);
         char *prefix = hl_buf_take(&nb);
-        scheme_frame f = {cur, cur + N, nxt, nxt + N, hl_mul(b.pool, ci, hl_sym(b.pool, "D")),
-                          prefix};
+        scheme_frame f = {cur, cur + N, nxt, nxt + N,
+                          hl_mul(b.pool, ci, hl_sym(b.pool, hl_system_step(sys))), prefix, "D"};
         st = scheme_read(&b, text, &f, err);
         free(prefix);
         for (int a = 0; a < 2 * N; a++)
@@ -243,7 +275,7 @@ int hl_scheme_rk(hl_scheme **out, const char *name, int s, const char *const *A,
         lin(&t, s, b, w ? 'l' : 'k');
         hl_buf_puts(&t, w ? ")" : "); ");
     }
-    int st = read_text(out, name, t.s, sys, err);
+    int st = read_text(out, name, t.s, "D", sys, err);
     hl_buf_clear(&t);
     return st;
 }
@@ -276,7 +308,7 @@ int hl_scheme_lie(hl_scheme **out, int n, hl_system *sys, hl_error *err)
     hl_alg *terms = hl_alg_vec_new(n + 1, ctx);
     hl_alg phi;
     hl_alg_init(&phi, ctx);
-    const hl_expr *D = hl_sym(b.pool, "D");
+    const hl_expr *D = hl_sym(b.pool, hl_system_step(sys));
     for (int a = 0; st == HL_OK && a < 2 * N; a++) {
         hl_alg_gen(&phi, a < N ? hl_system_var_q(sys, a) : hl_system_var_p(sys, a - N), ctx);
         st = hl_lie_terms(terms, &phi, n, sys, err);
@@ -327,7 +359,7 @@ static int itoh_abe(hl_scheme **out, hl_system *sys, hl_error *err)
     scheme_point(z, sys);
     for (int a = 0; a < M; a++)
         names[a] = z[a]->name;
-    const hl_expr *s = hl_sym(b.pool, HL_SCHEME_S), *D = hl_sym(b.pool, "D");
+    const hl_expr *s = hl_sym(b.pool, HL_SCHEME_S), *D = hl_sym(b.pool, hl_system_step(sys));
     const hl_expr **quot = hl_xmalloc((size_t)M * sizeof *quot);
     for (int i = 0; i < M; i++) {
         int ui = i < N ? b.s->iQ[i] : b.s->iP[i - N];
@@ -374,7 +406,7 @@ static int gonzalez(hl_scheme **out, hl_system *sys, hl_error *err)
     scheme_point(z, sys);
     for (int a = 0; a < M; a++)
         names[a] = z[a]->name;
-    const hl_expr *D = hl_sym(pool, "D"), *half = hl_num_frac(pool, 1, 2);
+    const hl_expr *D = hl_sym(pool, hl_system_step(sys)), *half = hl_num_frac(pool, 1, 2);
     hl_buf nb;
     hl_buf_init(&nb);
     for (int a = 0; a < M; a++) {
@@ -459,16 +491,50 @@ static int exact_flow(hl_scheme **out, hl_system *sys, hl_error *err)
     return st;
 }
 
+/* The member of lieN a name asks for: its order in *n, or an error that
+ * gives the range.  "lie" alone takes its order from param (> 0). */
+static int lie_member(int *n, const char *name, int param, hl_error *err)
+{
+    long k = strcmp(name, "lie") == 0 ? param : lie_order(name);
+    if (k >= 1 && k <= HL_SCHEME_LIE_MAX) {
+        *n = (int)k;
+        return HL_OK;
+    }
+    if (strcmp(name, "lie") == 0 || strcmp(name, "lieN") == 0)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                            "'%s' names the family of truncated Lie series: give its order "
+                            "N = 1..%d in the name, e.g. lie4 (lie1 is explicit Euler)",
+                            name, HL_SCHEME_LIE_MAX);
+    return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                        "no scheme '%s': the truncated Lie series lieN exists for "
+                        "N = 1..%d (lie1 is explicit Euler; beyond D^%d a step below 1 "
+                        "changes no double)",
+                        name, HL_SCHEME_LIE_MAX, HL_SCHEME_LIE_MAX);
+}
+
+static int is_lie_name(const char *name) { return strncmp(name, "lie", 3) == 0; }
+
 int hl_scheme_new(hl_scheme **out, const char *name, int param, hl_system *sys,
                   hl_error *err)
 {
     *out = NULL;
+    if (is_lie_name(name)) {
+        int n = 0, st = lie_member(&n, name, param, err);
+        if (st == HL_OK && !hl_system_has_H(sys))
+            st = hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                              "the scheme '%s' needs a Hamiltonian", name);
+        return st == HL_OK ? hl_scheme_lie(out, n, sys, err) : st;
+    }
     const entry *e = find(name);
     if (e == NULL) {
         hl_buf l;
         hl_buf_init(&l);
         for (int i = 0; i < NCAT; i++)
+        {
             hl_buf_printf(&l, "%s%s", i ? ", " : "", catalog[i].info.name);
+            if (catalog[i].info.order == HL_SCHEME_ORDER_N)
+                hl_buf_printf(&l, " (N = 1..%d)", HL_SCHEME_LIE_MAX);
+        }
         hl_error_set(err, HL_EINVAL, NULL, -1, 0, "unknown scheme '%s' (known: %s)", name, l.s);
         hl_buf_clear(&l);
         return HL_EINVAL;
@@ -482,15 +548,13 @@ int hl_scheme_new(hl_scheme **out, const char *name, int param, hl_system *sys,
                             "H = (p^2 + q^2)/2 (in the system's names); this system is not it",
                             name);
     if (e->text)
-        return read_text(out, name, e->text, sys, err);
+        return read_text(out, name, e->text, "D", sys, err);
     if (strcmp(name, "rk4") == 0)
         return hl_scheme_rk(out, name, 4, rk4_A, rk4_b, sys, err);
     if (strcmp(name, "gauss2") == 0)
         return hl_scheme_rk(out, name, 2, gauss2_A, gauss2_b, sys, err);
     if (strcmp(name, "gauss3") == 0)
         return hl_scheme_rk(out, name, 3, gauss3_A, gauss3_b, sys, err);
-    if (strcmp(name, "lie") == 0)
-        return hl_scheme_lie(out, param > 0 ? param : e->info.order, sys, err);
     if (strcmp(name, "itoh-abe") == 0)
         return itoh_abe(out, sys, err);
     if (strcmp(name, "gonzalez") == 0)

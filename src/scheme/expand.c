@@ -115,7 +115,7 @@ static int evaluate(hl_series *U, const hl_scheme *s, const hl_expr *const *rhs,
 static int display_names_usable(const hl_scheme *s, hl_alg_ctx *ctx)
 {
     for (int u = 0; u < s->m; u++) {
-        if (hl_alg_ctx_index(ctx, s->display[u]) >= 0 || strcmp(s->display[u], "D") == 0)
+        if (hl_alg_ctx_index(ctx, s->display[u]) >= 0 || strcmp(s->display[u], hl_system_step(s->sys)) == 0)
             return 0;
         for (int v = 0; v < u; v++)
             if (strcmp(s->display[u], s->display[v]) == 0)
@@ -153,7 +153,7 @@ static int solve(hl_series *U, const hl_scheme *s, const hl_expr **lhs, const hl
             hl_error_prefix(err, "the value of '%s' at D = 0", s->display[u]);
     }
     if (st == HL_OK)
-        st = hl_series_solve(U, m, eqs, unk, z0, "D", n, ctx, err);
+        st = hl_series_solve(U, m, eqs, unk, z0, hl_system_step(s->sys), n, ctx, err);
     hl_alg_vec_free(z0, m, ctx);
     free(eqs);
     return st;

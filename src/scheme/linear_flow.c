@@ -78,18 +78,19 @@ static int trig_parts(hl_alg *C, hl_alg *S, hl_alg *K, const hl_alg *w2, hl_syst
     hl_buf b[3];
     for (int i = 0; i < 3; i++)
         hl_buf_init(&b[i]);
+    const char *D = hl_system_step(sys);
     if (sign == 0) {
         hl_buf_puts(&b[0], "1");
-        hl_buf_puts(&b[1], "D");
-        hl_buf_puts(&b[2], "D^2/2");
+        hl_buf_puts(&b[1], D);
+        hl_buf_printf(&b[2], "%s^2/2", D);
     } else {
         const char *cf = sign > 0 ? "cos" : "cosh", *sf = sign > 0 ? "sin" : "sinh";
-        hl_buf_printf(&b[0], "%s(sqrt(%s)*D)", cf, w);
-        hl_buf_printf(&b[1], "%s(sqrt(%s)*D)/sqrt(%s)", sf, w, w);
+        hl_buf_printf(&b[0], "%s(sqrt(%s)*%s)", cf, w, D);
+        hl_buf_printf(&b[1], "%s(sqrt(%s)*%s)/sqrt(%s)", sf, w, D, w);
         if (sign > 0)
-            hl_buf_printf(&b[2], "(1 - cos(sqrt(%s)*D))/(%s)", w, w);
+            hl_buf_printf(&b[2], "(1 - cos(sqrt(%s)*%s))/(%s)", w, D, w);
         else
-            hl_buf_printf(&b[2], "(cosh(sqrt(%s)*D) - 1)/(%s)", w, w);
+            hl_buf_printf(&b[2], "(cosh(sqrt(%s)*%s) - 1)/(%s)", w, D, w);
     }
     hl_alg *out[3] = {C, S, K};
     int st = HL_OK;

@@ -276,7 +276,7 @@ static int name(rd *r, vv *out, int pos, int len)
         *out = vector_of(r, name_is(r, pos, len, "Q") ? r->Qs : r->Ps);
         return HL_OK;
     }
-    if (name_is(r, pos, len, "D")) {
+    if (name_is(r, pos, len, f->D_word)) {
         *out = scalar(r, f->D);
         return HL_OK;
     }
@@ -431,11 +431,13 @@ static int item(rd *r)
 
 static int reserved(const rd *r, int pos, int len)
 {
-    static const char *const words[] = {"q", "p", "Q", "P", "D", "pi", "H", "Hq", "Hp",
+    static const char *const words[] = {"q", "p", "Q", "P", "pi", "H", "Hq", "Hp",
                                         "dot", "int"};
     for (size_t i = 0; i < sizeof words / sizeof *words; i++)
         if (name_is(r, pos, len, words[i]))
             return 1;
+    if (name_is(r, pos, len, r->f->D_word))
+        return 1;
     return hl_fun_lookup(r->src + pos, len) >= 0;
 }
 

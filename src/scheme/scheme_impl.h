@@ -37,6 +37,7 @@ typedef struct scheme_frame {
     const int *Qu, *Pu;                 /* N each: unknown indices of the next point */
     const hl_expr *D;                   /* the step */
     const char *prefix;                 /* for stage names ("" or "c2.") */
+    const char *D_word;                 /* the step's name in the text */
 } scheme_frame;
 
 int scheme_read(sb *b, const char *text, const scheme_frame *f, hl_error *err);

@@ -381,7 +381,7 @@ static int compile_newton(hl_scheme_stepper *st, const hl_scheme *s, const hl_ex
      * stage, a rate (Q - q)/D) its value at D = 0 taken at Euler's
      * half step, where a rate is to O(D^2) (Gonzalez: 6 Newton iterations
      * a step -> 3-4 on the pendulum, D = 0.01) and a stage no worse */
-    const hl_expr *D = hl_sym(pool, "D");
+    const hl_expr *D = hl_sym(pool, hl_system_step(s->sys));
     const char **zn = hl_xmalloc((size_t)(2 * N) * sizeof *zn);
     const hl_expr **half = hl_xmalloc((size_t)(2 * N) * sizeof *half);
     for (int j = 0; j < N; j++) {
@@ -458,7 +458,7 @@ static int stepper_build(hl_scheme_stepper **out, const hl_scheme *s, int taylor
         inputs[j] = hl_system_coord(s->sys, j);
         inputs[N + j] = hl_system_momentum(s->sys, j);
     }
-    inputs[2 * N] = "D";
+    inputs[2 * N] = hl_system_step(s->sys);
     for (int u = 0; u < m; u++)
         inputs[2 * N + 1 + u] = s->unknown[u];
     const hl_expr **lhs = hl_xmalloc((size_t)m * sizeof *lhs);

@@ -12,7 +12,7 @@ static hl_system *make_system(const char *H)
 {
     hl_system *sys;
     hl_error err;
-    hl_system_spec spec = {H, NULL, NULL, NULL};
+    hl_system_spec spec = {H, NULL, NULL, NULL, NULL};
     if (hl_system_new(&sys, &spec, &err) != HL_OK) {
         fprintf(stderr, "system '%s': %s\n", H, err.msg);
         exit(2);

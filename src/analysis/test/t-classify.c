@@ -33,7 +33,7 @@ int main(void)
 {
     hl_error err;
     hl_system *sys;
-    hl_system_spec spec = {"(p^2+x^2)/2", NULL, NULL, NULL};
+    hl_system_spec spec = {"(p^2+x^2)/2", NULL, NULL, NULL, NULL};
     if (hl_system_new(&sys, &spec, &err) != HL_OK)
         return 2;
     hl_alg_ctx *ctx = hl_system_ctx(sys);

@@ -21,7 +21,7 @@ static const want table[] = {
     {"euler", 1}, {"symplectic-euler-a", 1}, {"symplectic-euler-b", 1},
     {"stormer-verlet-kdk", 2}, {"stormer-verlet-dkd", 2}, {"implicit-midpoint", 2},
     {"rk4", 4}, {"gauss2", 4}, {"gauss3", 6}, {"avf", 2}, {"gonzalez", 2},
-    {"itoh-abe", 1}, {"lie", 4}, {"yoshida4", 4}, {"paper-euler", 1},
+    {"itoh-abe", 1}, {"lie4", 4}, {"lie2", 2}, {"lie7", 7}, {"yoshida4", 4}, {"paper-euler", 1},
 };
 
 /* Errors of scheme `name` to order n; returns the measured order or -1. */

@@ -18,7 +18,7 @@ static hl_system *sys_new(const char *H)
 {
     hl_system *s = NULL;
     hl_error err;
-    hl_system_spec spec = {H, NULL, NULL, NULL};
+    hl_system_spec spec = {H, NULL, NULL, NULL, NULL};
     int st = hl_system_new(&s, &spec, &err);
     CHECK_MSG(st == HL_OK, "%s: %s", H, err.msg);
     return s;

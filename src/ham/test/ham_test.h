@@ -11,7 +11,7 @@
 /* A system from H (and optional pairs); exits the test on failure. */
 static inline hl_system *sys_new(const char *H, const char *pairs)
 {
-    hl_system_spec spec = {H, pairs, NULL, NULL};
+    hl_system_spec spec = {H, pairs, NULL, NULL, NULL};
     hl_system *sys = NULL;
     hl_error err;
     hl_error_clear(&err);

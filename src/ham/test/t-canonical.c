@@ -21,7 +21,7 @@
 static hl_system *map_sys(const char *map, const char *pairs)
 {
     const char *extra[] = {map, NULL};
-    hl_system_spec spec = {NULL, pairs, NULL, extra};
+    hl_system_spec spec = {NULL, pairs, NULL, extra, NULL};
     hl_system *sys = NULL;
     hl_error err;
     hl_error_clear(&err);

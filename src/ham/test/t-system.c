@@ -25,9 +25,14 @@ static const pairing_case good[] = {
     {"p^2/2 - cos(q)", NULL, NULL, "q:p;"},
     {"q^2", NULL, NULL, "q:p;"},
     {"(px^2+py^2)/2 - 1/sqrt(x^2+y^2)", NULL, NULL, "x:px,y:py;"},
-    {"py^2/2 + k*x^2 + px", NULL, NULL, "y:py,x:px;k"},
+    {"py^2/2 + k*x^2 + px", NULL, NULL, "x:px,y:py;k"},
+    {"pz + z*py + y*x*px", NULL, NULL, "x:px,y:py,z:pz;"},
+    {"pb^2 + b*a*pa", NULL, NULL, "a:pa,b:pb;"},
+    {"py*y + pb*b*px*x", NULL, NULL, "x:px,y:py,b:pb;"},
+    {"py^2/2 + k*x^2 + px", "y:py,x:px", NULL, "y:py,x:px;k"},
+    {"k10*q + k9*p + k*q + omega*k2", NULL, NULL, "q:p;k2,k9,k10,k,omega"},
     {"(p1^2+p2^2+p10^2)/2 + q2*q1", NULL, NULL, "q1:p1,q2:p2,q10:p10;"},
-    {"p^2/(2*m) + k*q^2/2", NULL, NULL, "q:p;m,k"},
+    {"p^2/(2*m) + k*q^2/2", NULL, NULL, "q:p;k,m"},
     {"p^2/(2*m) + k*q^2/2", NULL, "k=2, m=1/2", "q:p;"},
     {"p^2/(2*m) + k*q^2/2", NULL, "m=3", "q:p;k"},
     {"u^2 + v^2 + a*u", "u:v", NULL, "u:v;a"},
@@ -67,7 +72,7 @@ static const bad_case bad[] = {
 static void test_good(void)
 {
     for (size_t i = 0; i < sizeof good / sizeof good[0]; i++) {
-        hl_system_spec spec = {good[i].H, good[i].pairs, good[i].params, NULL};
+        hl_system_spec spec = {good[i].H, good[i].pairs, good[i].params, NULL, NULL};
         hl_system *sys = NULL;
         hl_error err;
         hl_error_clear(&err);
@@ -88,7 +93,7 @@ static void test_bad(void)
 {
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         const bad_case *c = &bad[i];
-        hl_system_spec spec = {c->H, c->pairs, c->params, NULL};
+        hl_system_spec spec = {c->H, c->pairs, c->params, NULL, NULL};
         hl_system *sys = NULL;
         hl_error err;
         hl_error_clear(&err);
@@ -153,7 +158,7 @@ static void test_read(void)
 
     /* H in a map-only system */
     const char *extra[] = {"X = x + D*p; P = p", NULL};
-    hl_system_spec spec = {NULL, NULL, NULL, extra};
+    hl_system_spec spec = {NULL, NULL, NULL, extra, NULL};
     CHECK(hl_system_new(&sys, &spec, &err) == HL_OK);
     CHECK(!hl_system_has_H(sys) && hl_system_H(sys) == NULL);
     hl_alg_init(&a, hl_system_ctx(sys));
@@ -163,11 +168,48 @@ static void test_read(void)
     hl_system_free(sys);
 }
 
+/* The step's name: refused in H and in phase functions; renamed, the old
+ * name is an ordinary parameter and the new one is the step everywhere. */
+static void test_step(void)
+{
+    hl_system *sys = NULL;
+    hl_error err;
+    hl_system_spec morse = {"p^2/2 + D*(1-exp(-q))^2", NULL, NULL, NULL, NULL};
+    CHECK(hl_system_new(&sys, &morse, &err) == HL_EINVAL && sys == NULL);
+    CHECK(err.pos == 8 && err.src == morse.H && strstr(err.msg, "step") != NULL);
+
+    morse.step = "h";
+    CHECK(hl_system_new(&sys, &morse, &err) == HL_OK);
+    CHECK(strcmp(hl_system_step(sys), "h") == 0);
+    CHECK(hl_system_nparams(sys) == 1 && strcmp(hl_system_param(sys, 0), "D") == 0);
+    hl_alg_ctx *ctx = hl_system_ctx(sys);
+    CHECK(strcmp(hl_alg_ctx_name(ctx, hl_system_var_D(sys)), "h") == 0);
+    hl_alg a;
+    hl_alg_init(&a, ctx);
+    CHECK(hl_system_read(&a, sys, "q + h*p + D", &err) == HL_OK);
+    CHECK(hl_alg_depends_on(&a, hl_system_var_D(sys), ctx));
+    CHECK(hl_system_read_phase(&a, sys, "q + D", &err) == HL_OK);
+    CHECK(hl_system_read_phase(&a, sys, "q + h", &err) == HL_EINVAL && err.pos == 4);
+    hl_alg_clear(&a, ctx);
+    hl_system_free(sys);
+
+    static const char *const bad_steps[] = {"sin", "H", "pi", "", "2h", "h h"};
+    for (size_t i = 0; i < sizeof bad_steps / sizeof *bad_steps; i++) {
+        hl_system_spec spec = {"p^2/2 - cos(q)", NULL, NULL, NULL, bad_steps[i]};
+        CHECK_MSG(hl_system_new(&sys, &spec, &err) == HL_EINVAL, "step '%s'", bad_steps[i]);
+    }
+    hl_system_spec pairs = {"ph^2/2", "h:ph", NULL, NULL, "h"};
+    CHECK(hl_system_new(&sys, &pairs, &err) == HL_EINVAL && err.pos == 0);
+    hl_system_spec param = {"p^2/2 + k*q", NULL, "D=1", NULL, NULL};
+    CHECK(hl_system_new(&sys, &param, &err) == HL_EINVAL && strstr(err.msg, "step") != NULL);
+}
+
 int main(void)
 {
     test_good();
     test_bad();
     test_read();
+    test_step();
     hl_system_free(NULL);
     return HL_TEST_END();
 }

@@ -57,7 +57,7 @@ static void test_json(void)
 
 static hl_system *sys_of(const char *H)
 {
-    hl_system_spec spec = {H, NULL, NULL, NULL};
+    hl_system_spec spec = {H, NULL, NULL, NULL, NULL};
     hl_system *sys = NULL;
     if (hl_system_new(&sys, &spec, NULL) != HL_OK)
         exit(1);

@@ -22,7 +22,7 @@ static int fixture_new(fixture *f, const char *H, const char *scheme, const char
     hl_error err;
     hl_error_clear(&err);
     memset(f, 0, sizeof *f);
-    hl_system_spec spec = {H, NULL, NULL, NULL};
+    hl_system_spec spec = {H, NULL, NULL, NULL, NULL};
     int st = hl_system_new(&f->sys, &spec, &err);
     if (st == HL_OK && scheme != NULL)
         st = hl_scheme_new(&f->sch, scheme, 0, f->sys, &err);

@@ -55,7 +55,8 @@ int main(void)
     order_case("(1 + q^2/2)*p^2/2 - cos(q)", pinit, "itoh-abe", 0.004, 1);
     order_case("(1 + q^2/2)*p^2/2 - cos(q)", pinit, "gauss2", 0.1, 4);
     order_case(PENDULUM, pinit, "yoshida4", 0.1, 4);
-    order_case(PENDULUM, pinit, "lie", 0.1, 4); /* the Lie series truncated after D^4 */
+    order_case(PENDULUM, pinit, "lie4", 0.1, 4); /* the Lie series truncated after D^4 */
+    order_case(PENDULUM, pinit, "lie6", 0.2, 6);
 
     /* every scheme of the catalog that is not for the oscillator only, on
      * Henon-Heiles (E = 1/8: x = 0, y = 0.1, py = 0.3, px from E) and on
@@ -73,7 +74,7 @@ int main(void)
         {"rk4", 0.1, 0.02, 4},                 {"gauss2", 0.1, 0.02, 4},
         {"gauss3", 0.2, 0.05, 6},              {"avf", 0.05, 0.01, 2},
         {"gonzalez", 0.05, 0.01, 2},           {"yoshida4", 0.1, 0.02, 4},
-        {"lie", 0.1, 0.02, 4},
+        {"lie4", 0.1, 0.02, 4},
     };
     for (size_t i = 0; i < sizeof every / sizeof every[0]; i++) {
         order_case(HENON, hinit, every[i].scheme, every[i].hh, every[i].order);

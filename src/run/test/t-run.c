@@ -192,7 +192,7 @@ static void test_errors(void)
 
     /* a parameter without a value */
     hl_system *sys = NULL;
-    hl_system_spec spec = {"p^2/2 + k*q^2/2", NULL, NULL, NULL};
+    hl_system_spec spec = {"p^2/2 + k*q^2/2", NULL, NULL, NULL, NULL};
     hl_run *r = NULL;
     CHECK(hl_system_new(&sys, &spec, &err) == HL_OK);
     CHECK(hl_run_new(&r, sys, NULL, &err) == HL_EINVAL);

@@ -60,7 +60,7 @@ static hl_system *oscillator(void)
 {
     hl_system *sys;
     hl_error err;
-    hl_system_spec spec = {OSC, NULL, NULL, NULL};
+    hl_system_spec spec = {OSC, NULL, NULL, NULL, NULL};
     if (hl_system_new(&sys, &spec, &err) != HL_OK)
         exit(2);
     return sys;

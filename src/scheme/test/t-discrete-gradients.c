@@ -72,7 +72,7 @@ typedef struct fixture {
 static int fixture_open(fixture *f, const char *H, const char *scheme)
 {
     hl_error err;
-    hl_system_spec spec = {H, NULL, NULL, NULL};
+    hl_system_spec spec = {H, NULL, NULL, NULL, NULL};
     *f = (fixture){NULL, NULL, NULL};
     if (hl_system_new(&f->sys, &spec, &err) == HL_OK &&
         hl_scheme_new(&f->s, scheme, 0, f->sys, &err) == HL_OK &&
@@ -273,7 +273,7 @@ static void gonzalez_order0(void)
                                       "(px^2+py^2)/2 - 1/sqrt(x^2+y^2)", "p^4/4 + q^6 + q*p"};
     for (int i = 0; i < 4; i++) {
         hl_error err;
-        hl_system_spec spec = {Hs[i], NULL, NULL, NULL};
+        hl_system_spec spec = {Hs[i], NULL, NULL, NULL, NULL};
         hl_system *sys = NULL;
         hl_scheme *s = NULL;
         if (hl_system_new(&sys, &spec, &err) != HL_OK ||

@@ -122,6 +122,16 @@ int main(void)
         CHECK(info->description && strlen(info->description) > 10);
         for (int j = 0; j < i; j++)
             CHECK(strcmp(hl_scheme_catalog(j)->name, info->name) != 0);
+        if (info->order == HL_SCHEME_ORDER_N) { /* the family lieN: some members */
+            static const char *const members[] = {"lie1", "lie4"};
+            for (int m = 0; m < 2; m++) {
+                const hl_scheme_info *mi = hl_scheme_lookup(members[m]);
+                CHECK(mi != NULL && mi->order == members[m][3] - '0');
+                if (mi != NULL)
+                    claims(pend, mi, "pendulum");
+            }
+            continue;
+        }
         if (info->flags & (HL_SCHEME_OSCILLATOR | HL_SCHEME_QUADRATIC)) {
             claims(osc, info, "oscillator");
             continue;
@@ -130,6 +140,8 @@ int main(void)
         claims(hh, info, "henon-heiles");
     }
     CHECK(hl_scheme_catalog(n) == NULL && hl_scheme_lookup("nope") == NULL);
+    CHECK(hl_scheme_lookup("lie0") == NULL && hl_scheme_lookup("lie21") == NULL &&
+          hl_scheme_lookup("lie20") != NULL && hl_scheme_lookup("lie20")->order == 20);
     CHECK(hl_scheme_text("rk4") == NULL && hl_scheme_text("avf") != NULL);
     hl_system_free(pend);
     hl_system_free(hh);

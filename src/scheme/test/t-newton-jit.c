@@ -16,7 +16,7 @@
 static void compare(const char *H, const char *name, const double *z0, int n2, double D)
 {
     hl_error err;
-    hl_system_spec spec = {H, NULL, NULL, NULL};
+    hl_system_spec spec = {H, NULL, NULL, NULL, NULL};
     hl_system *sys = NULL;
     hl_scheme *s = NULL;
     hl_scheme_stepper *a = NULL, *b = NULL;
@@ -52,7 +52,7 @@ static void compare(const char *H, const char *name, const double *z0, int n2, d
 static void failure(void)
 {
     hl_error ea, eb;
-    hl_system_spec spec = {"p^2/2 - cos(q)", NULL, NULL, NULL};
+    hl_system_spec spec = {"p^2/2 - cos(q)", NULL, NULL, NULL, NULL};
     hl_system *sys = NULL;
     hl_scheme *s = NULL;
     hl_scheme_stepper *a = NULL, *b = NULL;

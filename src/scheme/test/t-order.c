@@ -39,8 +39,9 @@ static const want schemes[] = {
     {"avf", 2, 0},
     {"gonzalez", 2, 0},
     {"itoh-abe", 1, 0},
-    {"lie", 4, 0},
+    {"lie4", 4, 0},
     {"lie", 3, 3},
+    {"lie9", 9, 0},
     {"yoshida4", 4, 0},
     {"paper-euler", 1, 0},
 };
@@ -110,7 +111,7 @@ static void run(const char *H, const char *label)
 {
     hl_system *sys;
     hl_error err;
-    hl_system_spec spec = {H, NULL, NULL, NULL};
+    hl_system_spec spec = {H, NULL, NULL, NULL, NULL};
     if (hl_system_new(&sys, &spec, &err) != HL_OK) {
         fprintf(stderr, "system: %s\n", err.msg);
         exit(2);
