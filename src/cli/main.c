@@ -17,10 +17,8 @@
     "  -h, --help         show this help\n"                                      \
     "\n"                                                                       \
     "Formulas use + - * / ^ (or **), sin cos tan exp log sqrt atan asin acos\n" \
-    "sinh cosh tanh, atan2(y, x) (the angle of (x, y), in (-pi, pi]), pi;
-"   \
-    "D is the step (--step renames it), H names the Hamiltonian.
-"
+    "sinh cosh tanh, atan2(y, x) (the angle of (x, y), in (-pi, pi]), pi;\n"   \
+    "D is the step (--step renames it), H names the Hamiltonian.\n"
 
 static const cli_command commands[] = {
     {"generator", cmd_generator, "the evolution generator g of a Hamiltonian",
