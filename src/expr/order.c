@@ -27,6 +27,11 @@ static int cmp_expr(const hl_expr *x, const hl_expr *y)
         case HL_FUN:
             if (x->fun != y->fun)
                 return (int)x->fun - (int)y->fun;
+            if (x->b) { /* a function of two arguments: its second one first */
+                int c = cmp_expr(x->b, y->b);
+                if (c != 0)
+                    return c;
+            }
             break;
         case HL_NEG:
             break;
@@ -172,6 +177,8 @@ static const hl_expr *order_node(order_walk *w, const hl_expr *e)
     case HL_PI:
         return e;
     case HL_FUN:
+        if (e->b)
+            return hl_call2(w->pool, e->fun, order(w, e->a), order(w, e->b));
         return hl_call(w->pool, e->fun, order(w, e->a));
     case HL_POW:
         return hl_pow(w->pool, order(w, e->a), order(w, e->b));
