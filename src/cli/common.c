@@ -202,8 +202,13 @@ int cli_main(int argc, char **argv, const cli_spec *spec)
         int code = CLI_OK;
         hl_error_clear(&err);
         hl_buf_init(&out);
-        rc = spec->body(&out, &code, sys, &o, &err) == HL_OK ? cli_emit(&out, code)
-                                                              : cli_fail(&err);
+        int st = spec->body(&out, &code, sys, &o, &err);
+        if (st == HL_OK && hl_alg_ctx_unprinted(hl_system_ctx(sys)) > 0)
+            st = hl_error_set(&err, HL_ELIMIT, NULL, -1, 0,
+                              "result too large to print: %.0f terms and operators written "
+                              "out (limit %d)",
+                              hl_alg_ctx_unprinted(hl_system_ctx(sys)), HL_PRINT_MAX_NODES);
+        rc = st == HL_OK ? cli_emit(&out, code) : cli_fail(&err);
         hl_buf_clear(&out);
     }
     hl_system_free(sys);
