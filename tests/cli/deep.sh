@@ -26,6 +26,16 @@ run 0 generator -H "$H - p^2" --json
 # 6250 copies of each of 1, x, x^2, x^3: dH/dx = 6250 (1 + 2 x + 3 x^2)
 py 'g = d["generator"]; assert same(g["p"], "-6250*(1 + 2*x + 3*x**2)") and same(g["x"], "-2*p"), g'
 
+# ---- a 60,000-term sum compiled for a run: (60000 x)^2/7.2e9 = x^2/2 --------
+run 0 run -H "p^2/2 + ($(copies x + 60000))^2/7200000000" --scheme lie --tol 1e-12 --t 1 \
+    --init x=1,p=0
+python3 - "$tmp/out" <<'PYEOF' && ok || bad "run of the 60,000-term oscillator: not (cos 1, -sin 1)"
+import csv, math, sys
+rows = list(csv.reader(open(sys.argv[1])))
+t, x, p = (float(v) for v in rows[-1][:3])
+assert t == 1 and abs(x - math.cos(1)) < 1e-10 and abs(p + math.sin(1)) < 1e-10, rows[-1]
+PYEOF
+
 # ---- canonical --map with 40,000 minuses or terms ---------------------------
 run 0 canonical --map "X = $(minuses 40000)x; P = p"
 has_line 'canonical for every D'
