@@ -21,6 +21,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     double z[4];
     int st = hl_run_init_values(z, sys, init, &err);
     fuzz_check_error(st, &err, init);
+    for (int i = 0; st == HL_OK && i < 4; i++)
+        if (!isfinite(z[i]))
+            abort();
 
     arb_ptr za = _arb_vec_init(4);
     fuzz_check_error(hl_run_init_values_arb(za, sys, init, 128, &err), &err, init);

@@ -3,6 +3,7 @@
 # and run each for a number of executions; print each target's executions
 # and the crashes found.  A crash's input is left in build-fuzz/crashes/.
 #   usage: scripts/fuzz.sh [RUNS] [TARGET...]   (default 1000000, every target)
+#   FUZZ_SECONDS=N stops each target after N seconds as well (0: no limit).
 # The corpus in fuzz/corpus/<target> seeds each run; new inputs go to a
 # scratch copy.  To fold useful ones back, minimised:
 #   build-fuzz/fuzz_<t> -merge=1 fuzz/corpus/<t>.new fuzz/corpus/<t> <scratch>
@@ -28,7 +29,7 @@ for t in "${targets[@]}"; do
     # fuzz-0.log to the current directory); inputs up to 4 KiB, 10 s an
     # input, 2 GiB of memory
     if ! "$build/fuzz_$t" "$scratch" -runs="$runs" -max_len=4096 -timeout=10 \
-        -rss_limit_mb=2048 -print_final_stats=1 \
+        -rss_limit_mb=2048 -max_total_time="${FUZZ_SECONDS:-0}" -print_final_stats=1 \
         -artifact_prefix="$build/crashes/$t-" >"$log" 2>&1; then
         status=1
     fi
