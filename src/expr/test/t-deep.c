@@ -149,6 +149,21 @@ static void check_limits(hl_pool *pool)
     free(s);
 }
 
+/* The size of a printed form, each shared node counted every time it is
+ * written: e_{k+1} = e_k*e_k + y has s_{k+1} = 2 s_k + 3, s_0 = 1, so
+ * s_k = 2^(k+2) - 3 (past any budget for k = 60, with 3k + 2 nodes). */
+static void check_tree_size(hl_pool *pool)
+{
+    const hl_expr *x = hl_sym(pool, "x"), *y = hl_sym(pool, "y"), *e = x;
+    for (int k = 1; k <= 60; k++) {
+        e = hl_add(pool, hl_mul(pool, e, e), y);
+        if (k == 10)
+            CHECK(hl_expr_tree_size(e) == 4093);
+    }
+    CHECK(fabs(hl_expr_tree_size(e) / (ldexp(1, 62) - 3) - 1) < 1e-15); /* rounded */
+    CHECK(hl_expr_tree_size(e) > HL_PRINT_MAX_NODES);
+}
+
 int main(void)
 {
     hl_pool *pool = hl_pool_new();
@@ -156,6 +171,7 @@ int main(void)
     check_minus_run(pool);
     check_chains(pool);
     check_limits(pool);
+    check_tree_size(pool);
     hl_pool_free(pool);
     return HL_TEST_END();
 }
