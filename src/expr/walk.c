@@ -1,9 +1,9 @@
-/* Walks over an expression DAG: symbols, substitution, double evaluation.
- * Each visits every node once (memo.h), so shared subexpressions cost once
- * however often they are referenced, and none recurses on the C stack: a
- * sum of 10^5 terms is a chain 10^5 nodes deep.  The memoised rules below
- * are called in post-order (hl_expr_postorder), so each finds its operands
- * done and goes one level down, never more. */
+/* Walks over an expression DAG: symbols, cost, size, substitution, double
+ * evaluation.  Each visits every node once, so shared subexpressions cost
+ * once however often they are referenced, and none recurses on the C
+ * stack (a sum of 10^5 terms is a chain 10^5 nodes deep): hl_expr_postorder
+ * hands the nodes over operands first, and each rule reads its operands'
+ * results from a memo (memo.h). */
 #include <math.h>
 #include <string.h>
 
