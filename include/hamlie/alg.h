@@ -68,6 +68,13 @@ int hl_alg_ctx_step(const hl_alg_ctx *ctx); /* -1 if none */
 int hl_alg_ctx_numeric_used(const hl_alg_ctx *ctx);
 void hl_alg_ctx_reset_numeric_used(hl_alg_ctx *ctx);
 
+/* Results too large to print (report.h writes a note in their place,
+ * hl_expr_tree_size > HL_PRINT_MAX_NODES): the size of the largest one
+ * since the context was made, 0 if none, so that a command refuses its
+ * output rather than print part of it. */
+double hl_alg_ctx_unprinted(const hl_alg_ctx *ctx);
+void hl_alg_ctx_note_unprinted(hl_alg_ctx *ctx, double nodes);
+
 /* ---- elements --------------------------------------------------------- */
 
 void hl_alg_init(hl_alg *a, const hl_alg_ctx *ctx); /* a = 0 */

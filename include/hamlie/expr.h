@@ -97,9 +97,13 @@ int hl_fun_arity(hl_fun f);
 
 /* Parse one expression.  On error returns HL_EPARSE (or HL_EDOM for a
  * division by zero between literals, HL_ELIMIT for nesting deeper than
- * HL_PARSE_MAX_DEPTH) with err->pos at the offending character and err->src
- * set to src; the message says what was expected. */
+ * HL_PARSE_MAX_DEPTH or more than HL_PARSE_MAX_NODES operands and
+ * operators) with err->pos at the offending character and err->src set to
+ * src; the message says what was expected.  The depth limit is the only one
+ * in the layer: every walk over an expression is iterative, so a sum of
+ * 10^5 terms (a chain 10^5 deep) is fine. */
 #define HL_PARSE_MAX_DEPTH 200
+#define HL_PARSE_MAX_NODES 1000000
 int hl_parse(const hl_expr **out, hl_pool *pool, const char *src, hl_error *err);
 
 /* One item of a ';'-separated list: "lhs = rhs", or a bare expression
@@ -126,8 +130,19 @@ typedef enum hl_style {
     HL_STYLE_C      /* a C expression over doubles: pow(), sin(), M_PI */
 } hl_style;
 
-/* Print an expression; the string is malloc'd and owned by the caller. */
+/* Print an expression; the string is malloc'd and owned by the caller.
+ * No depth or size limit: a caller printing a result for a person checks
+ * hl_expr_tree_size against HL_PRINT_MAX_NODES first. */
 char *hl_expr_print(const hl_expr *e, hl_style style);
+
+/* The number of nodes of e written out as a tree, a shared node counted
+ * each time it is referenced: the size of its printed form in operands and
+ * operators (exponential in the DAG's depth at worst, hence a double). */
+double hl_expr_tree_size(const hl_expr *e);
+
+/* A result whose printed form would have more nodes than this is said to be
+ * too large to print (tens of megabytes of text), not printed. */
+#define HL_PRINT_MAX_NODES 5000000
 
 /* A symbol name in LaTeX: "omega" -> "\omega", "q1" -> "q_{1}",
  * "p_2" -> "p_{2}", "px" -> "p_{x}".  malloc'd. */
@@ -139,6 +154,13 @@ char *hl_symbol_latex(const char *name);
  * Writes at most max names (borrowed from the pool) and returns how many
  * distinct symbols there are in all. */
 int hl_expr_symbols(const hl_expr *e, const char **names, int max);
+
+/* Call visit(arg, node) once for every distinct node of roots[0..n-1],
+ * each node after its operands (post-order, roots[0]'s nodes first, a
+ * before b), on an explicit stack: a chain as deep as memory allows is
+ * walked.  A nonzero return of visit stops the walk and is returned. */
+int hl_expr_postorder(const hl_expr *const *roots, int n,
+                      int (*visit)(void *arg, const hl_expr *node), void *arg);
 
 /* Does e mention the symbol? */
 int hl_expr_has_symbol(const hl_expr *e, const char *name);

@@ -52,6 +52,7 @@ struct hl_alg_ctx {
     int natoms;
     alg_atom *atoms; /* max_atoms slots, never moved */
     int numeric_used;
+    double unprinted; /* the largest result too large to print, or 0 */
     int step;        /* print order: the series symbol, or -1 (print.c) */
     slong *degs;     /* scratch: nvars degrees */
 };

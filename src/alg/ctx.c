@@ -65,6 +65,13 @@ int hl_alg_ctx_natoms(const hl_alg_ctx *ctx) { return ctx->natoms; }
 const fmpz_mpoly_ctx_struct *hl_alg_ctx_mpoly(const hl_alg_ctx *ctx) { return ctx->mctx; }
 int hl_alg_ctx_numeric_used(const hl_alg_ctx *ctx) { return ctx->numeric_used; }
 void hl_alg_ctx_reset_numeric_used(hl_alg_ctx *ctx) { ctx->numeric_used = 0; }
+double hl_alg_ctx_unprinted(const hl_alg_ctx *ctx) { return ctx->unprinted; }
+
+void hl_alg_ctx_note_unprinted(hl_alg_ctx *ctx, double nodes)
+{
+    if (nodes > ctx->unprinted)
+        ctx->unprinted = nodes;
+}
 int hl_alg_ctx_step(const hl_alg_ctx *ctx) { return ctx->step; }
 
 void hl_alg_ctx_set_step(hl_alg_ctx *ctx, int var)

@@ -112,6 +112,10 @@ int cli_fail(const hl_error *err);
  * code, or 2 if writing failed. */
 int cli_emit(hl_buf *out, int code);
 
+/* cli_emit for output that prints results of sys: refused, with nothing
+ * written, when one of them was too large to print (hl_alg_ctx_unprinted). */
+int cli_emit_results(hl_buf *out, int code, hl_system *sys);
+
 /* The system of a command from its options; extra formulas count for the
  * inference of the variables.  Prints the error and returns 2 on failure. */
 int cli_system(hl_system **sys, const cli_opts *o, const char *const *extra);

@@ -1041,7 +1041,7 @@ int cmd_errors(int argc, char **argv)
             write_json(&out, &R, &r, &o);
         else
             write_text(&out, &R, &r, &o);
-        rc = cli_emit(&out, CLI_OK);
+        rc = cli_emit_results(&out, CLI_OK, R.sys);
         hl_buf_clear(&out);
     }
     hl_system *sys = R.sys;

@@ -46,6 +46,19 @@ int cli_emit(hl_buf *out, int code)
     return code;
 }
 
+int cli_emit_results(hl_buf *out, int code, hl_system *sys)
+{
+    double unprinted = hl_alg_ctx_unprinted(hl_system_ctx(sys));
+    if (unprinted == 0)
+        return cli_emit(out, code);
+    hl_error err;
+    hl_error_set(&err, HL_ELIMIT, NULL, -1, 0,
+                 "result too large to print: %.0f terms and operators written out (limit %d)",
+                 unprinted, HL_PRINT_MAX_NODES);
+    hl_buf_clear(out);
+    return cli_fail(&err);
+}
+
 int cli_system(hl_system **sys, const cli_opts *o, const char *const *extra)
 {
     hl_system_spec spec = {o->H, o->pairs, o->params, extra, o->step};
@@ -204,8 +217,9 @@ int cli_main(int argc, char **argv, const cli_spec *spec)
         int code = CLI_OK;
         hl_error_clear(&err);
         hl_buf_init(&out);
-        rc = spec->body(&out, &code, sys, &o, &err) == HL_OK ? cli_emit(&out, code)
-                                                              : cli_fail(&err);
+        rc = spec->body(&out, &code, sys, &o, &err) == HL_OK
+                 ? cli_emit_results(&out, code, sys)
+                 : cli_fail(&err);
         hl_buf_clear(&out);
     }
     hl_system_free(sys);

@@ -1,5 +1,7 @@
 /* Differentiation, through the folding constructors of fold.h, so d/dx
- * x^3*y is 3*x^2*y and not 3*x^2*1*y + x^3*0. */
+ * x^3*y is 3*x^2*y and not 3*x^2*1*y + x^3*0.  Node by node in post-order
+ * (hl_expr_postorder): each rule reads its operands' derivatives from the
+ * memo, so no chain is too deep. */
 #include <string.h>
 
 #include "expr/fold.h"
@@ -38,7 +40,11 @@ static const hl_expr *fun_deriv(hl_pool *pool, hl_fun f, const hl_expr *e, const
     }
 }
 
-static const hl_expr *d(diff_walk *w, const hl_expr *e);
+/* The derivative of an operand, done before the node (post-order). */
+static const hl_expr *d(diff_walk *w, const hl_expr *e)
+{
+    return hl_memo_get(&w->done, e)->e;
+}
 
 static const hl_expr *d_pow(diff_walk *w, const hl_expr *e)
 {
@@ -68,11 +74,9 @@ static const hl_expr *d_atan2(diff_walk *w, const hl_expr *e)
     return hl_fold_div(pool, num, hl_add(pool, hl_pow(pool, x, two), hl_pow(pool, y, two)));
 }
 
-static const hl_expr *d(diff_walk *w, const hl_expr *e)
+static int d_node(void *arg, const hl_expr *e)
 {
-    hl_memo_val *v = hl_memo_get(&w->done, e);
-    if (v)
-        return v->e;
+    diff_walk *w = arg;
     hl_pool *pool = w->pool;
     const hl_expr *r, *da, *db;
     switch (e->kind) {
@@ -119,13 +123,14 @@ static const hl_expr *d(diff_walk *w, const hl_expr *e)
         r = hl_num_si(pool, 0);
     }
     hl_memo_put(&w->done, e)->e = r;
-    return r;
+    return 0;
 }
 
 const hl_expr *hl_expr_diff(hl_pool *pool, const hl_expr *e, const char *var)
 {
     diff_walk w = {.pool = pool, .var = var};
     hl_memo_init(&w.done);
+    hl_expr_postorder(&e, 1, d_node, &w);
     const hl_expr *r = d(&w, e);
     hl_memo_clear(&w.done);
     return r;

@@ -70,7 +70,21 @@ const hl_expr *hl_fold_sub(hl_pool *pool, const hl_expr *a, const hl_expr *b)
     return hl_sub(pool, a, b);
 }
 
-const hl_expr *hl_fold_mul(hl_pool *pool, const hl_expr *a, const hl_expr *b)
+/* Strips a run of NEG nodes, flipping *neg once for each: a product of
+ * -(-(...x)) folds with x, whatever the length of the run. */
+static const hl_expr *strip_negs(const hl_expr *e, int *neg)
+{
+    for (; e->kind == HL_NEG; e = e->a)
+        *neg = !*neg;
+    return e;
+}
+
+static const hl_expr *signed_result(hl_pool *pool, int neg, const hl_expr *e)
+{
+    return neg ? hl_fold_neg(pool, e) : e;
+}
+
+static const hl_expr *fold_mul_unsigned(hl_pool *pool, const hl_expr *a, const hl_expr *b)
 {
     if (hl_fold_is_num(a, 0) || hl_fold_is_num(b, 0))
         return hl_num_si(pool, 0);
@@ -84,18 +98,25 @@ const hl_expr *hl_fold_mul(hl_pool *pool, const hl_expr *a, const hl_expr *b)
         return hl_fold_neg(pool, a);
     if (a->kind == HL_NUM && b->kind == HL_NUM)
         return num_op(pool, HL_MUL, a, b);
-    if (b->kind == HL_NUM) /* constant first: x*3 -> 3*x */
-        return hl_fold_mul(pool, b, a);
-    if (a->kind == HL_NEG)
-        return hl_fold_neg(pool, hl_fold_mul(pool, a->a, b));
-    if (b->kind == HL_NEG)
-        return hl_fold_neg(pool, hl_fold_mul(pool, a, b->a));
+    if (b->kind == HL_NUM) { /* constant first: x*3 -> 3*x */
+        const hl_expr *t = a;
+        a = b;
+        b = t;
+    }
     if (a->kind == HL_NUM && b->kind == HL_MUL && b->a->kind == HL_NUM) /* 2*(3*x) */
         return hl_fold_mul(pool, num_op(pool, HL_MUL, a, b->a), b->b);
     return hl_mul(pool, a, b);
 }
 
-const hl_expr *hl_fold_div(hl_pool *pool, const hl_expr *a, const hl_expr *b)
+const hl_expr *hl_fold_mul(hl_pool *pool, const hl_expr *a, const hl_expr *b)
+{
+    int neg = 0;
+    a = strip_negs(a, &neg);
+    b = strip_negs(b, &neg);
+    return signed_result(pool, neg, fold_mul_unsigned(pool, a, b));
+}
+
+static const hl_expr *fold_div_unsigned(hl_pool *pool, const hl_expr *a, const hl_expr *b)
 {
     if (hl_fold_is_num(b, 1))
         return a;
@@ -105,9 +126,14 @@ const hl_expr *hl_fold_div(hl_pool *pool, const hl_expr *a, const hl_expr *b)
         return num_op(pool, HL_DIV, a, b);
     if (b->kind == HL_NUM && !hl_fold_is_num(b, 0)) /* (2*p)/2 -> p */
         return hl_fold_mul(pool, num_op(pool, HL_DIV, hl_num_si(pool, 1), b), a);
-    if (a->kind == HL_NEG)
-        return hl_fold_neg(pool, hl_fold_div(pool, a->a, b));
     return hl_div(pool, a, b);
+}
+
+const hl_expr *hl_fold_div(hl_pool *pool, const hl_expr *a, const hl_expr *b)
+{
+    int neg = 0;
+    a = strip_negs(a, &neg); /* the sign of a numerator comes out: -(a/b) */
+    return signed_result(pool, neg, fold_div_unsigned(pool, a, b));
 }
 
 const hl_expr *hl_fold_pow(hl_pool *pool, const hl_expr *a, const hl_expr *b)

@@ -10,7 +10,14 @@
  * level is charged for each '(' (group or call), for each exponent, and for
  * each run of unary operators except one that directly follows '(': thus the
  * printer's "x^(-y)" costs what the input "x^-y" cost, and printing never
- * pushes an accepted formula over the limit. */
+ * pushes an accepted formula over the limit.  Runs of operators at one
+ * level (a sum's terms, a run of minuses) are loops, not recursion: a sum of
+ * 10^5 terms costs one level.  HL_PARSE_MAX_DEPTH is the one depth limit of
+ * the layer: every other walk is iterative (hl_expr_postorder, print.c).
+ *
+ * Size is counted too: every node the parser makes is charged, and a
+ * formula of more than HL_PARSE_MAX_NODES is refused before anything is
+ * computed from it. */
 #include <string.h>
 
 #include "base/buf.h"
@@ -34,6 +41,7 @@ typedef struct parser {
     hl_error *err;
     hl_token prev; /* the token before lx.tok */
     int depth;
+    long nodes; /* made so far, against HL_PARSE_MAX_NODES */
 } parser;
 
 static int subexpr(parser *p, int limit, value *out);
@@ -57,7 +65,18 @@ static int enter(parser *p, hl_token at)
 {
     if (++p->depth > HL_PARSE_MAX_DEPTH)
         return hl_error_set(p->err, HL_ELIMIT, p->src, at.pos, at.len,
-                            "nesting deeper than %d levels", HL_PARSE_MAX_DEPTH);
+                            "formula nested too deeply (limit %d) at position %d",
+                            HL_PARSE_MAX_DEPTH, at.pos + 1);
+    return HL_OK;
+}
+
+/* Charge n nodes made at token at. */
+static int charge(parser *p, long n, hl_token at)
+{
+    if ((p->nodes += n) > HL_PARSE_MAX_NODES)
+        return hl_error_set(p->err, HL_ELIMIT, p->src, at.pos, at.len,
+                            "formula too large (more than %d operations) at position %d",
+                            HL_PARSE_MAX_NODES, at.pos + 1);
     return HL_OK;
 }
 
@@ -109,6 +128,8 @@ static int simpleexp(parser *p, value *v)
 
     v->pos = t.pos;
     v->flags = 0;
+    if ((st = charge(p, 1, t)))
+        return st;
     switch (t.kind) {
     case HL_TK_NUM:
         v->e = hl_num_fmpq(p->pool, p->lx.num);
@@ -190,7 +211,7 @@ static int unary(parser *p, value *v)
         return st;
     while (p->lx.tok.kind == HL_TK_MINUS || p->lx.tok.kind == HL_TK_PLUS) {
         negs += p->lx.tok.kind == HL_TK_MINUS;
-        if ((st = next(p)))
+        if ((st = charge(p, 1, p->lx.tok)) || (st = next(p)))
             return st;
     }
     if (!starts_operand(p->lx.tok.kind))
@@ -261,7 +282,7 @@ static int subexpr(parser *p, int limit, value *v)
     while ((kind = binary_kind(p->lx.tok.kind)) >= 0 && hl_prec_table[kind].left > limit) {
         hl_token op = p->lx.tok;
         value rhs;
-        if ((st = next(p)))
+        if ((st = charge(p, 1, op)) || (st = next(p)))
             return st;
         if (!starts_operand(p->lx.tok.kind))
             return expected_expression(p);
@@ -308,6 +329,7 @@ static int parser_init(parser *p, hl_pool *pool, const char *src, hl_error *err)
     p->src = src;
     p->err = err;
     p->depth = 0;
+    p->nodes = 0;
     memset(&p->prev, 0, sizeof p->prev);
     p->prev.kind = HL_TK_EOF;
     if (strlen(src) > (size_t)1 << 30)

@@ -11,7 +11,11 @@
  * identifiers (letter {letter|digit|_}) other than "pi" and the function
  * names, and whose printed form nests at most HL_PARSE_MAX_DEPTH levels
  * (always true of what the parser returns).  A symbol named "pi" or "sin",
- * or one that is not an identifier, cannot be written in the language. */
+ * or one that is not an identifier, cannot be written in the language.
+ *
+ * Both printers run on an explicit stack of pieces (a node to print or a
+ * fixed text), not on the C stack: a node pushes what it prints, in order,
+ * and a sum of 10^5 terms, a chain 10^5 deep, prints like any other. */
 #include <string.h>
 
 #include "base/buf.h"
@@ -153,6 +157,57 @@ static int sympy_is_reserved(const char *name)
     return 0;
 }
 
+/* ---- the stack of pieces still to print ----------------------------------- */
+
+/* A piece: a node (e) or a fixed text (text); neither is an empty piece. */
+typedef struct piece {
+    const hl_expr *e;
+    const char *text;
+} piece;
+
+typedef struct pieces {
+    piece *p;
+    size_t n, cap;
+} pieces;
+
+#define NODE(x) ((piece){(x), NULL})
+#define TEXT(s) ((piece){NULL, (s)})
+#define IF_TEXT(c, s) ((piece){NULL, (c) ? (s) : NULL})
+
+/* Push p[0..n-1] so that p[0] is printed first. */
+static void push(pieces *S, int n, const piece *p)
+{
+    if (S->n + (size_t)n > S->cap) {
+        S->cap = 2 * S->cap + (size_t)n;
+        S->p = hl_xrealloc(S->p, S->cap * sizeof *S->p);
+    }
+    for (int i = n - 1; i >= 0; i--)
+        if (p[i].e != NULL || p[i].text != NULL)
+            S->p[S->n++] = p[i];
+}
+
+#define PUSH(S, ...) push((S), sizeof((piece[]){__VA_ARGS__}) / sizeof(piece), (piece[]){__VA_ARGS__})
+
+/* e, in parentheses (open, close) when paren */
+#define GROUP(e, paren, open, close) IF_TEXT(paren, open), NODE(e), IF_TEXT(paren, close)
+
+/* Print from root: each node is handed to print_node, which writes what it
+ * can at once and pushes the rest. */
+static void print_all(hl_buf *b, const hl_expr *root, hl_style st,
+                      void (*print_node)(hl_buf *b, pieces *S, hl_style st, const hl_expr *e))
+{
+    pieces S = {NULL, 0, 0};
+    PUSH(&S, NODE(root));
+    while (S.n > 0) {
+        piece p = S.p[--S.n];
+        if (p.text != NULL)
+            hl_buf_puts(b, p.text);
+        else
+            print_node(b, &S, st, p.e);
+    }
+    free(S.p);
+}
+
 /* ---- text, sympy, C: printing --------------------------------------------- */
 
 static void put_number(hl_buf *b, hl_style st, const hl_expr *e)
@@ -177,17 +232,6 @@ static void put_number(hl_buf *b, hl_style st, const hl_expr *e)
     }
 }
 
-static void print_plain(hl_buf *b, hl_style st, const hl_expr *e);
-
-static void print_group(hl_buf *b, hl_style st, const hl_expr *e, int paren)
-{
-    if (paren)
-        hl_buf_putc(b, '(');
-    print_plain(b, st, e);
-    if (paren)
-        hl_buf_putc(b, ')');
-}
-
 static const char *op_text(hl_style st, hl_expr_kind k)
 {
     switch (k) {
@@ -199,7 +243,7 @@ static const char *op_text(hl_style st, hl_expr_kind k)
     }
 }
 
-static void print_plain(hl_buf *b, hl_style st, const hl_expr *e)
+static void print_plain(hl_buf *b, pieces *S, hl_style st, const hl_expr *e)
 {
     switch (e->kind) {
     case HL_NUM:
@@ -216,33 +260,26 @@ static void print_plain(hl_buf *b, hl_style st, const hl_expr *e)
         break;
     case HL_NEG:
         hl_buf_putc(b, '-');
-        print_group(b, st, e->a, paren_neg(st, e->a));
+        PUSH(S, GROUP(e->a, paren_neg(st, e->a), "(", ")"));
         break;
     case HL_FUN: /* C prints a fraction in parentheses already */
         hl_buf_puts(b, hl_fun_name(e->fun));
         if (e->b != NULL) { /* atan2(y, x): the same name in text, SymPy and C */
-            hl_buf_putc(b, '(');
-            print_plain(b, st, e->a);
-            hl_buf_puts(b, ", ");
-            print_plain(b, st, e->b);
-            hl_buf_putc(b, ')');
+            PUSH(S, TEXT("("), NODE(e->a), TEXT(", "), NODE(e->b), TEXT(")"));
             break;
         }
-        print_group(b, st, e->a,
-                    !(st == HL_STYLE_C && e->a->kind == HL_NUM && !num_is_int(e->a)));
+        PUSH(S, GROUP(e->a, !(st == HL_STYLE_C && e->a->kind == HL_NUM && !num_is_int(e->a)),
+                      "(", ")"));
         break;
     default:
         if (st == HL_STYLE_C && e->kind == HL_POW) {
             hl_buf_puts(b, "pow(");
-            print_plain(b, st, e->a);
-            hl_buf_puts(b, ", ");
-            print_plain(b, st, e->b);
-            hl_buf_putc(b, ')');
+            PUSH(S, NODE(e->a), TEXT(", "), NODE(e->b), TEXT(")"));
             break;
         }
-        print_group(b, st, e->a, paren_left(st, e->kind, e->a));
-        hl_buf_puts(b, op_text(st, e->kind));
-        print_group(b, st, e->b, paren_right(st, e->kind, e->a, e->b));
+        PUSH(S, GROUP(e->a, paren_left(st, e->kind, e->a), "(", ")"),
+             TEXT(op_text(st, e->kind)),
+             GROUP(e->b, paren_right(st, e->kind, e->a, e->b), "(", ")"));
     }
 }
 
@@ -335,8 +372,6 @@ static const char *const latex_fun[HL_FUN_COUNT] = {
     [HL_COSH] = "\\cosh", [HL_TANH] = "\\tanh", [HL_ATAN2] = "\\operatorname{atan2}",
 };
 
-static void latex(hl_buf *b, const hl_expr *e);
-
 static int latex_atom(const hl_expr *e) /* needs no parentheses under ^ */
 {
     return e->kind == HL_SYM || e->kind == HL_PI ||
@@ -352,15 +387,6 @@ static int latex_minus(const hl_expr *e) /* printed form starts with '-' */
     return e->kind == HL_NEG || (e->kind == HL_NUM && num_sgn(e) < 0);
 }
 
-static void latex_group(hl_buf *b, const hl_expr *e, int paren)
-{
-    if (paren)
-        hl_buf_puts(b, "\\left(");
-    latex(b, e);
-    if (paren)
-        hl_buf_puts(b, "\\right)");
-}
-
 /* sin, cos, tan and the hyperbolic ones take sin^{2} x */
 static int latex_power_fun(hl_fun f)
 {
@@ -368,48 +394,85 @@ static int latex_power_fun(hl_fun f)
            f == HL_TANH;
 }
 
-static void latex_call(hl_buf *b, hl_fun f, const hl_expr *arg, const hl_expr *power)
+static int latex_fun_power(const hl_expr *e) /* \sin^{2} q */
 {
-    hl_buf_puts(b, latex_fun[f]);
-    if (f == HL_SQRT) {
-        hl_buf_putc(b, '{');
-        latex(b, arg);
-        hl_buf_putc(b, '}');
-        return;
-    }
-    if (power != NULL) {
-        hl_buf_puts(b, "^{");
-        latex(b, power);
-        hl_buf_putc(b, '}');
-    }
-    if (latex_atom(arg)) {
-        hl_buf_putc(b, ' ');
-        latex(b, arg);
-    } else {
-        latex_group(b, arg, 1);
+    return e->kind == HL_POW && e->a->kind == HL_FUN && latex_power_fun(e->a->fun) &&
+           e->b->kind == HL_NUM && num_is_int(e->b) && num_sgn(e->b) > 0;
+}
+
+/* Does the LaTeX of e start with a digit?  (Then a factor before it needs
+ * a \cdot.)  Follows the leftmost piece down, as latex_node prints it. */
+static int latex_starts_digit(const hl_expr *e)
+{
+    for (;;) {
+        switch (e->kind) {
+        case HL_NUM:
+            return num_is_int(e) && num_sgn(e) >= 0;
+        case HL_SYM: {
+            hl_buf t;
+            hl_buf_init(&t);
+            latex_symbol(&t, e->name);
+            int digit = t.s[0] >= '0' && t.s[0] <= '9';
+            hl_buf_clear(&t);
+            return digit;
+        }
+        case HL_ADD:
+        case HL_SUB:
+            e = e->a;
+            break;
+        case HL_MUL:
+            if (latex_sum(e->a))
+                return 0; /* \left( */
+            e = e->a;
+            break;
+        case HL_POW:
+            if (latex_fun_power(e) || !latex_atom(e->a))
+                return 0;
+            e = e->a;
+            break;
+        default: /* -, \pi, \sin, \frac */
+            return 0;
+        }
     }
 }
 
-static void latex(hl_buf *b, const hl_expr *e)
+static void latex_call(hl_buf *b, pieces *S, hl_fun f, const hl_expr *arg,
+                       const hl_expr *power)
 {
-    hl_buf f;
+    hl_buf_puts(b, latex_fun[f]);
+    if (f == HL_SQRT) {
+        PUSH(S, TEXT("{"), NODE(arg), TEXT("}"));
+        return;
+    }
+    PUSH(S, IF_TEXT(power, "^{"), NODE(power), IF_TEXT(power, "}"),
+         IF_TEXT(latex_atom(arg), " "), GROUP(arg, !latex_atom(arg), "\\left(", "\\right)"));
+}
+
+static void latex_number(hl_buf *b, const hl_expr *e)
+{
+    if (num_is_int(e)) {
+        put_fmpz(b, fmpq_numref(e->num));
+        return;
+    }
+    if (num_sgn(e) < 0)
+        hl_buf_putc(b, '-');
+    hl_buf_puts(b, "\\frac{");
+    fmpz_t t;
+    fmpz_init(t);
+    fmpz_abs(t, fmpq_numref(e->num));
+    put_fmpz(b, t);
+    fmpz_clear(t);
+    hl_buf_puts(b, "}{");
+    put_fmpz(b, fmpq_denref(e->num));
+    hl_buf_putc(b, '}');
+}
+
+static void latex_node(hl_buf *b, pieces *S, hl_style st, const hl_expr *e)
+{
+    (void)st;
     switch (e->kind) {
     case HL_NUM:
-        if (num_is_int(e)) {
-            put_fmpz(b, fmpq_numref(e->num));
-            break;
-        }
-        if (num_sgn(e) < 0)
-            hl_buf_putc(b, '-');
-        hl_buf_puts(b, "\\frac{");
-        fmpz_t t;
-        fmpz_init(t);
-        fmpz_abs(t, fmpq_numref(e->num));
-        put_fmpz(b, t);
-        fmpz_clear(t);
-        hl_buf_puts(b, "}{");
-        put_fmpz(b, fmpq_denref(e->num));
-        hl_buf_putc(b, '}');
+        latex_number(b, e);
         break;
     case HL_SYM:
         latex_symbol(b, e->name);
@@ -419,54 +482,40 @@ static void latex(hl_buf *b, const hl_expr *e)
         break;
     case HL_NEG:
         hl_buf_putc(b, '-');
-        latex_group(b, e->a, latex_sum(e->a) || latex_minus(e->a));
+        PUSH(S, GROUP(e->a, latex_sum(e->a) || latex_minus(e->a), "\\left(", "\\right)"));
         break;
     case HL_FUN:
         if (e->b != NULL) { /* \operatorname{atan2}\left(y, x\right) */
             hl_buf_puts(b, latex_fun[e->fun]);
-            hl_buf_puts(b, "\\left(");
-            latex(b, e->a);
-            hl_buf_puts(b, ", ");
-            latex(b, e->b);
-            hl_buf_puts(b, "\\right)");
+            PUSH(S, TEXT("\\left("), NODE(e->a), TEXT(", "), NODE(e->b), TEXT("\\right)"));
             break;
         }
-        latex_call(b, e->fun, e->a, NULL);
+        latex_call(b, S, e->fun, e->a, NULL);
         break;
     case HL_ADD:
     case HL_SUB:
-        latex(b, e->a);
-        hl_buf_puts(b, e->kind == HL_ADD ? " + " : " - ");
-        latex_group(b, e->b, latex_minus(e->b) || (e->kind == HL_SUB && latex_sum(e->b)));
+        PUSH(S, NODE(e->a), TEXT(e->kind == HL_ADD ? " + " : " - "),
+             GROUP(e->b, latex_minus(e->b) || (e->kind == HL_SUB && latex_sum(e->b)),
+                   "\\left(", "\\right)"));
         break;
-    case HL_MUL:
-        latex_group(b, e->a, latex_sum(e->a));
-        /* print the right factor apart to see how it starts */
-        hl_buf_init(&f);
-        latex_group(&f, e->b, latex_sum(e->b) || latex_minus(e->b));
+    case HL_MUL: {
+        int paren_b = latex_sum(e->b) || latex_minus(e->b);
         /* a number after a factor needs a dot: 2\cdot 3, 2\cdot\frac{1}{2} */
-        hl_buf_puts(b, e->b->kind == HL_NUM || (f.s[0] >= '0' && f.s[0] <= '9') ? " \\cdot "
-                                                                                : "\\,");
-        hl_buf_puts(b, f.s);
-        hl_buf_clear(&f);
+        int dot = e->b->kind == HL_NUM || (!paren_b && latex_starts_digit(e->b));
+        PUSH(S, GROUP(e->a, latex_sum(e->a), "\\left(", "\\right)"),
+             TEXT(dot ? " \\cdot " : "\\,"), GROUP(e->b, paren_b, "\\left(", "\\right)"));
         break;
+    }
     case HL_DIV:
-        hl_buf_puts(b, "\\frac{");
-        latex(b, e->a);
-        hl_buf_puts(b, "}{");
-        latex(b, e->b);
-        hl_buf_putc(b, '}');
+        PUSH(S, TEXT("\\frac{"), NODE(e->a), TEXT("}{"), NODE(e->b), TEXT("}"));
         break;
     case HL_POW:
-        if (e->a->kind == HL_FUN && latex_power_fun(e->a->fun) && e->b->kind == HL_NUM &&
-            num_is_int(e->b) && num_sgn(e->b) > 0) {
-            latex_call(b, e->a->fun, e->a->a, e->b); /* \sin^{2} q */
+        if (latex_fun_power(e)) {
+            latex_call(b, S, e->a->fun, e->a->a, e->b); /* \sin^{2} q */
             break;
         }
-        latex_group(b, e->a, !latex_atom(e->a));
-        hl_buf_puts(b, "^{");
-        latex(b, e->b);
-        hl_buf_putc(b, '}');
+        PUSH(S, GROUP(e->a, !latex_atom(e->a), "\\left(", "\\right)"), TEXT("^{"),
+             NODE(e->b), TEXT("}"));
         break;
     }
 }
@@ -477,9 +526,6 @@ char *hl_expr_print(const hl_expr *e, hl_style style)
 {
     hl_buf b;
     hl_buf_init(&b);
-    if (style == HL_STYLE_LATEX)
-        latex(&b, e);
-    else
-        print_plain(&b, style, e);
+    print_all(&b, e, style, style == HL_STYLE_LATEX ? latex_node : print_plain);
     return hl_buf_take(&b);
 }

@@ -454,11 +454,20 @@ static const hl_expr *const *series_of(taylor_walk *w, const hl_expr *e)
     return r;
 }
 
+/* Called in post-order, series_of finds its operands done and recurses one
+ * level: no chain is too deep for the C stack. */
+static int series_node(void *w, const hl_expr *e)
+{
+    series_of(w, e);
+    return 0;
+}
+
 void hl_expr_taylor(const hl_expr **out, hl_pool *pool, const hl_expr *e, const char *var,
                     const hl_expr *at, int K)
 {
     taylor_walk w = {.pool = pool, .var = var, .at = at, .zero = hl_num_si(pool, 0), .K = K};
     hl_memo_init(&w.done);
+    hl_expr_postorder(&e, 1, series_node, &w);
     const hl_expr *const *c = series_of(&w, e);
     memcpy(out, c, (size_t)(K + 1) * sizeof *out);
     for (int i = 0; i < w.count; i++)

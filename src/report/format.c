@@ -11,9 +11,21 @@
 #include "base/buf.h"
 #include "hamlie/report.h"
 
+/* A result too large to print is not printed: a note stands in its place,
+ * and the context records it so that a command can refuse its output. */
+static char *print_result(const hl_expr *e, hl_alg_ctx *ctx, hl_style style)
+{
+    double nodes = hl_expr_tree_size(e);
+    if (nodes > HL_PRINT_MAX_NODES) {
+        hl_alg_ctx_note_unprinted(ctx, nodes);
+        return hl_xstrdup("(too large to print)");
+    }
+    return hl_expr_print(e, style);
+}
+
 char *hl_format_alg(const hl_alg *a, hl_alg_ctx *ctx, hl_pool *pool, hl_style style)
 {
-    return hl_expr_print(hl_alg_to_expr(a, ctx, pool), style);
+    return print_result(hl_alg_to_expr(a, ctx, pool), ctx, style);
 }
 
 /* Split e = r * rest, taking r from the numbers on the left spine of the
@@ -129,7 +141,7 @@ char *hl_format_vector_field(int n, const char *const *names, const hl_alg *c,
             hl_buf_puts(&b, neg ? (latex ? " - " : " \u2212 ") : " + ");
         first = 0;
         if (!is_one(mag)) {
-            char *s = hl_expr_print(mag, latex ? HL_STYLE_LATEX : HL_STYLE_TEXT);
+            char *s = print_result(mag, ctx, latex ? HL_STYLE_LATEX : HL_STYLE_TEXT);
             if (is_sum(mag))
                 hl_buf_printf(&b, latex ? "\\left(%s\\right) " : "(%s) ", s);
             else
@@ -235,5 +247,5 @@ char *hl_format_series(const hl_alg *terms, int order, const char *var, int fact
     fmpq_clear(kf);
     if (sum == NULL)
         sum = hl_num_si(pool, 0);
-    return hl_expr_print(sum, style);
+    return print_result(sum, ctx, style);
 }

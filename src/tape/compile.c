@@ -87,13 +87,8 @@ typedef struct comp {
     int capregs, capcode, cappro, capleaf;
     const char *const *inputs;
     hl_error *err;
-    int depth; /* of compile's recursion */
+    int in_walk; /* inside compile's post-order walk */
 } comp;
-
-/* Generated expressions (derivatives, expansions) can be far deeper than
- * anything the parser accepts; the recursion stops here instead of the
- * stack overflowing. */
-#define COMPILE_MAX_DEPTH 10000
 
 static int new_reg(comp *c, int isconst)
 {
@@ -471,21 +466,41 @@ static void compile_muldiv(comp *c, int div, int a, const fmpq_t sa, int b, cons
 
 static int compile_node(comp *c, const hl_expr *e, int *reg, fmpq_t s);
 
-static int compile(comp *c, const hl_expr *e, int *reg, fmpq_t s)
+static int compiled(comp *c, const hl_expr *e, int *reg, fmpq_t s)
 {
     int v = map_get(&c->nodes, (uintptr_t)e, 0);
-    if (v >= 0) {
-        *reg = c->vreg[v];
-        fmpq_set(s, c->vscale + v);
+    if (v < 0)
+        return 0;
+    *reg = c->vreg[v];
+    fmpq_set(s, c->vscale + v);
+    return 1;
+}
+
+static int compile_visit(void *arg, const hl_expr *e)
+{
+    int reg;
+    fmpq_t s;
+    fmpq_init(s);
+    int status = compile(arg, e, &reg, s);
+    fmpq_clear(s);
+    return status;
+}
+
+/* Generated expressions (derivatives, expansions) can be far deeper than
+ * anything the parser accepts: the nodes are compiled in post-order
+ * (hl_expr_postorder), so each finds its operands compiled and nothing
+ * recurses on the C stack. */
+static int compile(comp *c, const hl_expr *e, int *reg, fmpq_t s)
+{
+    if (compiled(c, e, reg, s))
         return HL_OK;
-    }
-    if (c->depth >= COMPILE_MAX_DEPTH)
-        return hl_error_set(c->err, HL_ELIMIT, NULL, -1, 0,
-                            "an expression nested more than %d deep cannot be compiled",
-                            COMPILE_MAX_DEPTH);
-    c->depth++;
-    int status = compile_node(c, e, reg, s);
-    c->depth--;
+    if (c->in_walk)
+        return compile_node(c, e, reg, s);
+    c->in_walk = 1;
+    int status = hl_expr_postorder(&e, 1, compile_visit, c);
+    c->in_walk = 0;
+    if (status == HL_OK && !compiled(c, e, reg, s))
+        status = compile_node(c, e, reg, s);
     return status;
 }
 

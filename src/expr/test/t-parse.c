@@ -173,7 +173,7 @@ static void check_depth(void)
         } else {
             CHECK_MSG(st == HL_ELIMIT, "%d parentheses", n);
             CHECK(err.pos == HL_PARSE_MAX_DEPTH);
-            CHECK_STR(err.msg, "nesting deeper than 200 levels");
+            CHECK_STR(err.msg, "formula nested too deeply (limit 200) at position 201");
         }
     }
     /* sin(sin(...)) */
