@@ -55,15 +55,26 @@ void cli_opts_clear(cli_opts *o);
 int cli_usage(const cli_command *cmd, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 
+/* *slot = value for an option that takes one value: given again with
+ * another value it is refused (the last one would silently win).  Returns
+ * -1, or 2 after the usage message. */
+int cli_once(const char **slot, const char *value, const char *opt, const cli_command *cmd);
+
 /* A command's own options, taken out of argv before cli_parse sees the rest
  * (kept in order): "--name VALUE" and "--name=VALUE", or just "--name" for a
  * flag.  Values are taken whole, so "--dt -1" reaches the command's range
  * check; nothing after "--" is taken.  found(arg, k, value) is called for
- * each option own[k] met (value NULL for a flag).  Returns -1, or 2 after a
- * usage message (an option without its value). */
+ * each option own[k] met (value NULL for a flag).  A CLI_OWN_VALUE given twice with different values is refused (cli_once).
+ * Returns -1, or 2 after a usage message (an option without its value, or
+ * given twice). */
+enum {
+    CLI_OWN_VALUE = 0, /* --name VALUE, once */
+    CLI_OWN_FLAG = 1,  /* --name */
+    CLI_OWN_REPEAT = 2 /* --name VALUE, any number of times (--observe) */
+};
 typedef struct cli_own {
     const char *name;
-    int flag;
+    int kind; /* CLI_OWN_* */
 } cli_own;
 int cli_take_own(int *argc, char **argv, const cli_own *own, int n,
                  void (*found)(void *arg, int k, const char *value), void *arg,

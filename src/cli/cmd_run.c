@@ -104,6 +104,8 @@ static int parse_double(double *v, const char *s, const char *opt, const cli_com
     return -1;
 }
 
+static int adaptive(const run_opts *r);
+
 /* The usage checks of run's options, after parsing (cli_begin). */
 static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
 {
@@ -138,6 +140,15 @@ static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
     r->have_dt = r->dt_s != NULL;
     if (r->have_dt && (rc = parse_double(&r->dt, r->dt_s, "--dt", cmd)) >= 0)
         return rc;
+    if (!r->have_dt && r->orders == NULL && !adaptive(r))
+        return cli_usage(cmd, "missing --dt: a fixed-step scheme needs its step (or --orders "
+                              "D1,D2,... for several)");
+    if (o->have_order && (r->scheme == NULL || strcmp(r->scheme, "lie") != 0 || adaptive(r)))
+        return cli_usage(cmd, "--order is the order of the truncated Lie series: for "
+                              "--scheme lie with --dt (and without --tol)");
+    if (o->have_order && (o->order < 1 || o->order > HL_LIE_MAX_ORDER))
+        return cli_usage(cmd, "--order must be from 1 to %d, not %d", HL_LIE_MAX_ORDER,
+                         o->order);
     r->tol = 1e-15;
     if (r->tol_s != NULL && (rc = parse_double(&r->tol, r->tol_s, "--tol", cmd)) >= 0)
         return rc;
@@ -674,6 +685,18 @@ static int do_orders(hl_run *run, hl_system *sys, const run_opts *r, const cli_o
     return rc;
 }
 
+/* An error in --init, shown with the --init text (under the value at
+ * fault when the error has a position). */
+static int init_fail(hl_error *err, const char *init)
+{
+    if (err->src == NULL) {
+        err->src = init;
+        err->pos = -1;
+    }
+    hl_error_prefix(err, "in --init");
+    return cli_fail(err);
+}
+
 /* ---- --digits: the adaptive run in Arb ------------------------------------- */
 
 typedef struct csv_arb {
@@ -743,9 +766,13 @@ static int do_run_arb(hl_run *run, hl_system *sys, const run_opts *r, const cli_
     arb_ptr z0 = _arb_vec_init(l.n2);
     char *tmpname = NULL;
     int want_csv = r->out != NULL || o->format != CLI_JSON;
-    if (hl_run_nsteps(&n, dt, r->t, &err) != HL_OK ||
-        hl_run_init_values_arb(z0, sys, r->init, prec, &err) != HL_OK) {
+    if (hl_run_nsteps(&n, dt, r->t, &err) != HL_OK) {
         rc = cli_fail(&err);
+        goto done;
+    }
+    if (hl_run_init_values_arb(z0, sys, r->init, prec, &err) != HL_OK ||
+        hl_run_check_start_arb(run, z0, prec, &err) != HL_OK) {
+        rc = init_fail(&err, r->init);
         goto done;
     }
     if (want_csv && (rc = open_out(c, r, &tmpname)) != CLI_OK)
@@ -859,7 +886,7 @@ int cmd_run(int argc, char **argv)
     static const cli_own own[] = {
         {"--scheme", 0}, {"--equations", 0}, {"--init", 0},  {"--out", 0},
         {"--orders", 0}, {"--dt", 0},        {"--t", 0},     {"--tol", 0},
-        {"--every", 0},  {"--digits", 0},    {"--observe", 0}, {"--no-reference", 1},
+        {"--every", 0},  {"--digits", 0},    {"--observe", CLI_OWN_REPEAT}, {"--no-reference", 1},
         {"--plot", 0},   {"--format", 0}};
     static const cli_begin_spec spec = {own, (int)(sizeof own / sizeof own[0]), found_opt,
                                         check_opts, CLI_OPT_H | CLI_OPT_MAP | CLI_OPT_ORDER, 64};
@@ -871,13 +898,14 @@ int cmd_run(int argc, char **argv)
     hl_error err;
     hl_error_clear(&err);
     double z0[2 * 64];
-    if (rc < 0 && hl_run_init_values(z0, sys, r.init, &err) != HL_OK) {
-        hl_error_prefix(&err, "in --init");
-        rc = cli_fail(&err);
-    }
+    if (rc < 0 && r.digits_s == NULL && hl_run_init_values(z0, sys, r.init, &err) != HL_OK)
+        rc = init_fail(&err, r.init);
     hl_exact_flow *ex = NULL;
     if (rc < 0 && build(&run, &sch, &ex, sys, &r, &o, &err) != HL_OK)
         rc = cli_fail(&err);
+    /* before any output: a point outside H's domain is not a blow-up */
+    if (rc < 0 && r.digits_s == NULL && hl_run_check_start(run, z0, &err) != HL_OK)
+        rc = init_fail(&err, r.init);
     if (rc < 0)
         rc = r.orders != NULL    ? do_orders(run, sys, &r, &o, z0, cmd)
              : r.digits_s != NULL ? do_run_arb(run, sys, &r, &o)

@@ -56,6 +56,15 @@ static int parse_order(cli_opts *o, const char *s, const cli_command *cmd)
 static int parse_opts(cli_opts *o, int argc, char **argv, unsigned accept,
                       const cli_command *cmd);
 
+int cli_once(const char **slot, const char *value, const char *opt, const cli_command *cmd)
+{
+    if (*slot != NULL && strcmp(*slot, value) != 0)
+        return cli_usage(cmd, "%s given twice ('%s', then '%s'): give it once", opt, *slot,
+                         value);
+    *slot = value;
+    return -1;
+}
+
 static int takes(unsigned accept, unsigned bit, const char *opt, const cli_command *cmd)
 {
     if (accept & bit)
@@ -147,6 +156,7 @@ static int parse_opts(cli_opts *o, int argc, char **argv, unsigned accept,
         {NULL, 0, NULL, 0},
     };
     hl_buf params;
+    const char *order_text = NULL;
     int c, rc = -1;
 
     memset(o, 0, sizeof *o);
@@ -157,10 +167,10 @@ static int parse_opts(cli_opts *o, int argc, char **argv, unsigned accept,
         switch (c) {
         case 'H':
             if ((rc = takes(accept, CLI_OPT_H, "-H", cmd)) < 0)
-                o->H = optarg;
+                rc = cli_once(&o->H, optarg, "-H", cmd);
             break;
         case O_PAIRS:
-            o->pairs = optarg;
+            rc = cli_once(&o->pairs, optarg, "--pairs", cmd);
             break;
         case O_PARAM:
             hl_buf_printf(&params, "%s%s", params.len ? "," : "", optarg);
@@ -183,10 +193,11 @@ static int parse_opts(cli_opts *o, int argc, char **argv, unsigned accept,
             break;
         case O_MAP:
             if ((rc = takes(accept, CLI_OPT_MAP, "--map", cmd)) < 0)
-                o->map = optarg;
+                rc = cli_once(&o->map, optarg, "--map", cmd);
             break;
         case 'n':
-            if ((rc = takes(accept, CLI_OPT_ORDER, "--order", cmd)) < 0)
+            if ((rc = takes(accept, CLI_OPT_ORDER, "--order", cmd)) < 0 &&
+                (rc = cli_once(&order_text, optarg, "--order", cmd)) < 0)
                 rc = parse_order(o, optarg, cmd);
             break;
         case O_OF:

@@ -81,7 +81,7 @@ int hl_run_adaptive_arb(hl_run *r, arb_srcptr z0, double digits, const char *T, 
     if (n < 0 || n > 10000000)
         return hl_error_set(err, n < 0 ? HL_EINVAL : HL_ELIMIT, NULL, -1, 0,
                             "%ld outputs: between 0 and 1e7 in Arb", n);
-    int st = hl_run_compile_(r, err);
+    int st = hl_run_check_start_arb(r, z0, hl_run_arb_prec(digits), err);
     if (st != HL_OK)
         return st;
     drive_arb d;

@@ -260,7 +260,7 @@ static int start(drive *d, hl_run *r, const double *z0, double dt, double t, lon
     d->every = every > 0 ? every : 1;
     int st = hl_run_nsteps(&d->n, dt, t, err);
     if (st == HL_OK)
-        st = hl_run_compile_(r, err);
+        st = hl_run_check_start(r, z0, err);
     if (st != HL_OK)
         return st;
     stats_start(s, d->n);
