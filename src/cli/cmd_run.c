@@ -30,8 +30,9 @@ const char cmd_run_help[] =
     "  --scheme NAME        a scheme of the catalog (hamlie schemes lists them)\n"
     "  --map 'X = ...; P = ...'   the user's explicit map (D is the step)\n"
     "  --equations '...'    the user's implicit scheme, e.g. '(X-x)/D = ...; ...'\n"
-    "  -n, --order N        the order of --scheme lie with --dt (default 4)\n"
-    "  --dt STEP            the step (> 0); t/dt must be a whole number\n"
+    "  -n, --order N        the order of --scheme lie with --dt (1..200, default 4)\n"
+    "  --dt STEP            the step (> 0, required for a fixed-step scheme); t/dt\n"
+    "                       must be a whole number\n"
     "  --t TIME             the final time (>= 0)\n"
     "  --init x=1,p=0       the initial point (values may be formulas: q=pi/2)\n"
     "  --every K            write every K-th row (and the last; default 1)\n"
@@ -486,6 +487,15 @@ static long rows_for(long steps, long every, long n)
     return steps / every + 1 + (steps == n && n % every != 0);
 }
 
+/* The one line printed after a run written to --out. */
+static void put_summary(hl_buf *out, const hl_run_stats *s, const csv *c, const char *file)
+{
+    hl_buf_printf(out, "%ld steps to t = %.17g, max |H - H0| = %.3g", s->steps, s->t, s->max_dH);
+    if (c->sigma)
+        hl_buf_printf(out, ", final sigma = %.3g", s->sigma);
+    hl_buf_printf(out, "; wrote %ld rows to %s\n", c->rows, file);
+}
+
 static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts *o,
                   const double *z0)
 {
@@ -590,13 +600,8 @@ static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts
                 hl_buf_printf(&out, "%d", figures);
                 jkv_num(&out, "wall_time_s", wall);
                 hl_buf_puts(&out, "\n}\n");
-            } else {
-                hl_buf_printf(&out, "%ld steps to t = %.17g, max |H - H0| = %.3g", s.steps, s.t,
-                              s.max_dH);
-                if (c.sigma)
-                    hl_buf_printf(&out, ", final sigma = %.3g", s.sigma);
-                hl_buf_printf(&out, "; wrote %ld rows to %s\n", c.rows, r->out);
-            }
+            } else
+                put_summary(&out, &s, &c, r->out);
             rc = cli_emit(&out, CLI_OK);
         }
     }
@@ -801,6 +806,12 @@ static int do_run_arb(hl_run *run, hl_system *sys, const run_opts *r, const cli_
         goto done;
     }
     rc = want_csv ? close_out(c, r, tmpname, 1, &s) : CLI_OK;
+    if (rc == CLI_OK && o->format != CLI_JSON && r->out != NULL) {
+        hl_buf out;
+        hl_buf_init(&out);
+        put_summary(&out, &s, c, r->out);
+        rc = cli_emit(&out, CLI_OK);
+    }
     if (rc == CLI_OK && o->format == CLI_JSON) {
         hl_buf out;
         hl_buf_init(&out);

@@ -87,4 +87,41 @@ for r in rows:
     assert abs(q - want) <= mpmath.mpf("1e-425"), (r, want)
 PYEOF
 
+# ---- --digits with --out: the summary line, as without --digits -------------
+# and plot of that CSV: the energy error from the texts, not from doubles.
+# An eccentric Kepler orbit at 25 digits drifts by ~2e-25 in H ~ -0.455,
+# below a double's resolution (5.6e-17 there): read as doubles it was a
+# flat 0.
+rm -rf "$tmp/k25.csv" "$tmp/fig"
+run 0 run -H "$KEPLER" --scheme lie --digits 25 --dt 10 --t 300 --init x=1,y=0,px=0,py=0.3 --out "$tmp/k25.csv"
+has_text "30 steps to t = 300, max |H - H0| = "
+has_text "wrote 31 rows to $tmp/k25.csv"
+cp "$tmp/out" "$tmp/summary"
+run 0 plot "$tmp/k25.csv" --out "$tmp/fig" --json
+python3 - "$tmp/out" "$tmp/k25.csv" "$tmp/summary" <<'PYEOF' >"$tmp/py" 2>&1 && ok || { bad "plot of a --digits CSV"; cat "$tmp/py" >&2; }
+import json, re, sys, mpmath
+mpmath.mp.dps = 50
+d = json.load(open(sys.argv[1]))
+lines = open(sys.argv[2]).read().splitlines()
+iH = lines[0].split(",").index("H")
+H = [mpmath.mpf(l.split(",")[iH]) for l in lines[1:]]
+want = max(abs(h - H[0]) for h in H)
+got = d["runs"][0]["max_abs_dH"]
+assert want > 1e-26, want                      # the drift is there in the text
+assert abs(got - want) <= 1e-9 * want, (got, want)
+# the run's own max |H - H0| (in Arb, before printing) agrees to the
+# printing's resolution: 25 digits of H ~ 0.455
+run = float(re.search(r"max \|H - H0\| = ([0-9.e+-]+)", open(sys.argv[3]).read()).group(1))
+assert abs(run - float(want)) <= 1e-25, (run, want)
+PYEOF
+# a double CSV: |H - H0| from the doubles, as before (Euler: 2 H_n = (1 + dt^2)^n)
+run 0 run -H "$OSC" --scheme euler --dt 0.1 --t 1 --init q=1,p=0 --out "$tmp/e.csv"
+run 0 plot "$tmp/e.csv" --out "$tmp/fig" --json
+python3 - "$tmp/out" <<'PYEOF' >"$tmp/py" 2>&1 && ok || { bad "plot of a double CSV"; cat "$tmp/py" >&2; }
+import json, sys
+got = json.load(open(sys.argv[1]))["runs"][0]["max_abs_dH"]
+want = (1.01 ** 10 - 1) / 2
+assert abs(got - want) <= 1e-15, (got, want)
+PYEOF
+
 finish
