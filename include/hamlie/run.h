@@ -80,6 +80,14 @@ void hl_run_set_reference(hl_run *r, int on, double tol);
  * allocations show as leaks under LeakSanitizer). */
 void hl_run_set_jit(hl_run *r, int on);
 
+/* A progress callback (error.h), or NULL: called with the steps done and
+ * asked (every 1024 steps of a fixed-step run, every output row of an
+ * adaptive one, and when a run's compiled loop reaches a row or 65536
+ * steps); when it returns non-zero the run stops after the step it was
+ * called at: the rows delivered and the statistics describe that step, and
+ * the run returns HL_ESTOP ("stopped at step k of n"). */
+void hl_run_set_progress(hl_run *r, hl_progress_fn fn, void *arg);
+
 /* z[0..2N-1] (q then p) from "x=1,p=0" (values are formulas in numbers,
  * pi and set parameters: "q=pi/2").  Every variable must be given exactly
  * once: a missing one is named.  A value that is not finite, or that

@@ -62,10 +62,16 @@ const char cmd_run_help[] =
     "                       printed with D digits; the initial values are read at\n"
     "                       that precision: py=sqrt(3) is sqrt(3) to D digits)\n"
     "\n"
+    "  --progress           show progress on stderr from the start (else after a\n"
+    "                       second or two); --quiet: none\n"
+    "\n"
     "A run stops at a blow-up (a value not finite) or a Newton failure, with the\n"
     "step and the time; the rows written before stay valid CSV (with --out they\n"
-    "are kept in FILE.partial).\n"
-    "Exit status: 0 the run completed; 2 usage or input error, or the run failed.\n"
+    "are kept in FILE.partial).  Ctrl-C (SIGINT) stops it the same way, after a\n"
+    "whole step: the CSV complete to its last row, the --json summary written with\n"
+    "\"interrupted\": true.\n"
+    "Exit status: 0 the run completed; 2 usage or input error, or the run failed;\n"
+    "130 interrupted.\n"
     "Example: hamlie run -H '(p^2+x^2)/2' --scheme euler --dt 0.1 --t 20 --init x=1,p=0\n";
 
 /* The options proper to run. */
@@ -182,10 +188,6 @@ typedef struct csv {
     long rows;
     hl_runplot *plot; /* --plot: the rows kept for the figures, or NULL */
     double *plot_row; /* 1 + n2 + 1 + sigma + nobs values */
-    /* progress */
-    int progress;
-    long nsteps, last_k;
-    struct timespec last;
 } csv;
 
 static void csv_field(hl_buf *b, const char *s)
@@ -222,24 +224,11 @@ static void csv_num(hl_buf *b, double v)
     hl_buf_putn(b, s, (size_t)n + 1);
 }
 
-static double now(struct timespec *ts)
+static double now(void)
 {
-    clock_gettime(CLOCK_MONOTONIC, ts);
-    return (double)ts->tv_sec + 1e-9 * (double)ts->tv_nsec;
-}
-
-static void progress(csv *c, long k)
-{
-    if (!c->progress || k - c->last_k < 65536)
-        return;
-    c->last_k = k;
     struct timespec ts;
-    double t1 = now(&ts), t0 = (double)c->last.tv_sec + 1e-9 * (double)c->last.tv_nsec;
-    if (t1 - t0 < 0.5)
-        return;
-    c->last = ts;
-    fprintf(stderr, "\rhamlie run: step %ld of %ld (%.0f%%)", k, c->nsteps,
-            100.0 * (double)k / (double)(c->nsteps > 0 ? c->nsteps : 1));
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 /* A row for the figures, in the CSV's column order. */
@@ -262,7 +251,6 @@ static int plot_row(csv *c, const hl_run_row *row)
 static int csv_row(const hl_run_row *row, void *arg)
 {
     csv *c = arg;
-    progress(c, row->k);
     if (c->plot != NULL) {
         int st = plot_row(c, row);
         if (st != HL_OK)
@@ -375,6 +363,12 @@ static void jkv_num(hl_buf *b, const char *k, double v)
     jnum(b, v);
 }
 
+static void jkv_bool(hl_buf *b, const char *k, int v)
+{
+    jkey(b, k, 0);
+    hl_buf_puts(b, v ? "true" : "false");
+}
+
 static void jkv_str(hl_buf *b, const char *k, const char *s)
 {
     jkey(b, k, 0);
@@ -465,19 +459,10 @@ static int close_out(csv *c, const run_opts *r, const char *tmpname, int ok,
                 strerror(errno));
         rc = CLI_ERROR;
     } else if (!ok)
-        fprintf(stderr, "hamlie: note: the %ld rows written before the failure (to t = %.17g) "
-                        "are kept in '%s'\n", c->rows, s->t, dst);
+        fprintf(stderr, "hamlie: note: the %ld rows written (to t = %.17g) are kept in '%s'\n",
+                c->rows, s->t, dst);
     free(dst);
     return rc;
-}
-
-/* With nothing to consume the rows (--json alone) the runner need deliver
- * them only for the progress line: a row every ~0.1% of a long run, so
- * that long runs iterate in machine code between rows (run/drive.c). */
-static long sparse_every(long every, long n)
-{
-    long want = n / 1000 > 16 ? n / 1000 : 16;
-    return want <= every ? every : (want / every + 1) * every;
 }
 
 /* The rows --every would give for the steps done (run.h: row k is
@@ -485,6 +470,33 @@ static long sparse_every(long every, long n)
 static long rows_for(long steps, long every, long n)
 {
     return steps / every + 1 + (steps == n && n % every != 0);
+}
+
+/* Runs from this many steps say what they will do before they start
+ * (without --progress): they take a while at any rate. */
+#define PLAN_STEPS 100000000L
+
+/* The progress of a run on stderr (cli_progress), said first when the run
+ * is long or --progress asks. */
+static void start_progress(cli_progress *p, hl_run *run, const run_opts *r, const cli_opts *o,
+                           long n, double dt)
+{
+    int ad = adaptive(r);
+    cli_progress_begin(p, "run", ad ? "row" : "step", o->progress);
+    hl_run_set_progress(run, cli_progress_fn, p);
+    if (o->progress != CLI_PROGRESS_ON && n < PLAN_STEPS)
+        return;
+    const char *name = r->scheme != NULL ? r->scheme : o->map != NULL ? "the --map scheme"
+                                                                     : "the --equations scheme";
+    if (r->digits_s != NULL)
+        cli_progress_say(p, "%ld rows of the Taylor integrator in Arb at %g digits to t = %s",
+                         n + 1, r->digits, r->t_s);
+    else if (ad)
+        cli_progress_say(p, "%ld rows of the adaptive Taylor integrator (tol %g) to t = %g",
+                         n + 1, r->tol, r->t);
+    else
+        cli_progress_say(p, "%ld steps (%.3g) of %s at dt = %g to t = %g%s", n, (double)n, name,
+                         dt, r->t, r->no_ref ? "" : ", each against the reference");
 }
 
 /* The one line printed after a run written to --out. */
@@ -530,29 +542,27 @@ static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts
         plot_open(&c, sys, r, o);
     hl_run_set_reference(run, !r->no_ref, r->tol);
     hl_run_set_jit(run, 1);
-    c.progress = isatty(2);
-    c.nsteps = n;
-    struct timespec t0;
-    double w0 = now(&t0);
-    c.last = t0;
+    cli_progress p;
+    start_progress(&p, run, r, o, n, dt);
+    double w0 = now();
     hl_run_stats s;
     memset(&s, 0, sizeof s);
-    int consumed = want_csv || r->plot != NULL;
-    long every = consumed || ad ? r->every : sparse_every(r->every, n);
+    /* nothing consumes the rows of --json alone: the runner need not make them */
+    int consumed = want_csv || r->plot != NULL || ad;
     int st = ad ? hl_run_adaptive(run, z0, r->tol, dt, r->t, r->every, csv_row, &c, &s, &err)
-                : hl_run_fixed(run, z0, dt, r->t, every, csv_row, &c, &s, &err);
-    if (every != r->every)
+                : hl_run_fixed(run, z0, dt, r->t, r->every, consumed ? csv_row : NULL, &c, &s,
+                               &err);
+    if (!consumed)
         s.rows = rows_for(s.steps, r->every, n);
-    struct timespec t1;
-    double wall = now(&t1) - w0;
-    if (c.progress && n >= 65536 * 2)
-        fputs("\r\033[K", stderr);
+    double wall = now() - w0;
+    cli_progress_end(&p);
+    int stopped = st == HL_ESTOP, figures = 0;
     if (st == HL_EIO && c.io_error) {
         close_out(&c, r, tmpname, 0, &s);
         if (tmpname == NULL)
             fprintf(stderr, "hamlie: error: writing to standard output failed\n");
         rc = CLI_ERROR;
-    } else if (st != HL_OK) {
+    } else if (st != HL_OK && !stopped) {
         csv_flush(&c);
         cli_fail(&err);
         if (s.nsteps > 0 && (s.failed || s.steps > 0))
@@ -561,9 +571,13 @@ static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts
         if (want_csv)
             close_out(&c, r, tmpname, 0, &s);
         rc = CLI_ERROR;
+    } else if (stopped) {
+        fprintf(stderr, "hamlie run: interrupted after step %ld of %ld (t = %.17g)\n", s.steps,
+                s.nsteps, s.t);
+        rc = want_csv ? close_out(&c, r, tmpname, 0, &s) : CLI_OK;
     } else {
         /* the figures first: if they cannot be drawn, no CSV file is left */
-        int figures = c.plot != NULL ? plot_write(&c, r) : 0;
+        figures = c.plot != NULL ? plot_write(&c, r) : 0;
         if (figures < 0) {
             if (tmpname != NULL) {
                 fclose(c.fp);
@@ -574,37 +588,40 @@ static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts
             rc = want_csv ? close_out(&c, r, tmpname, 1, &s) : CLI_OK;
         if (rc == CLI_OK && c.plot != NULL && o->format != CLI_JSON)
             fprintf(stderr, "hamlie: drew %d figure files in %s\n", figures, r->plot);
-        if (rc == CLI_OK && (o->format == CLI_JSON || r->out != NULL)) {
-            hl_buf out;
-            hl_buf_init(&out);
-            if (o->format == CLI_JSON) {
-                json_head(&out, sys, r, o);
-                jkv_num(&out, "dt", dt);
-                jkey(&out, "steps", 0);
-                hl_buf_printf(&out, "%ld", s.steps);
-                jkey(&out, "rows", 0);
-                hl_buf_printf(&out, "%ld", s.rows);
-                jkv_num(&out, "final_t", s.t);
-                json_state(&out, "final_state", sys, hl_run_state(run));
-                jkv_num(&out, "H0", s.H0);
-                jkv_num(&out, "H_final", s.H);
-                jkv_num(&out, "max_abs_dH", s.max_dH);
-                jkv_num(&out, "sigma_final", s.sigma);
-                jkv_num(&out, "max_error", s.max_err);
-                jkv_num(&out, "tol", r->tol);
-                jkey(&out, "taylor_steps", 0);
-                hl_buf_printf(&out, "%ld", s.ref_steps);
-                jkv_str(&out, "out", r->out);
-                jkv_str(&out, "plot", r->plot);
-                jkey(&out, "figure_files", 0);
-                hl_buf_printf(&out, "%d", figures);
-                jkv_num(&out, "wall_time_s", wall);
-                hl_buf_puts(&out, "\n}\n");
-            } else
-                put_summary(&out, &s, &c, r->out);
-            rc = cli_emit(&out, CLI_OK);
-        }
     }
+    if (rc == CLI_OK && (o->format == CLI_JSON || (r->out != NULL && !stopped))) {
+        hl_buf out;
+        hl_buf_init(&out);
+        if (o->format == CLI_JSON) {
+            json_head(&out, sys, r, o);
+            jkv_bool(&out, "interrupted", stopped);
+            jkv_num(&out, "dt", dt);
+            jkey(&out, "steps", 0);
+            hl_buf_printf(&out, "%ld", s.steps);
+            jkey(&out, "rows", 0);
+            hl_buf_printf(&out, "%ld", s.rows);
+            jkv_num(&out, "final_t", s.t);
+            json_state(&out, "final_state", sys, hl_run_state(run));
+            jkv_num(&out, "H0", s.H0);
+            jkv_num(&out, "H_final", s.H);
+            jkv_num(&out, "max_abs_dH", s.max_dH);
+            jkv_num(&out, "sigma_final", s.sigma);
+            jkv_num(&out, "max_error", s.max_err);
+            jkv_num(&out, "tol", r->tol);
+            jkey(&out, "taylor_steps", 0);
+            hl_buf_printf(&out, "%ld", s.ref_steps);
+            jkv_str(&out, "out", r->out);
+            jkv_str(&out, "plot", r->plot);
+            jkey(&out, "figure_files", 0);
+            hl_buf_printf(&out, "%d", figures);
+            jkv_num(&out, "wall_time_s", wall);
+            hl_buf_puts(&out, "\n}\n");
+        } else
+            put_summary(&out, &s, &c, r->out);
+        rc = cli_emit(&out, CLI_OK);
+    }
+    if (rc == CLI_OK && stopped)
+        rc = CLI_INTERRUPTED;
     free(tmpname);
     plot_close(&c);
     hl_buf_clear(&c.buf);
@@ -645,14 +662,28 @@ static int do_orders(hl_run *run, hl_system *sys, const run_opts *r, const cli_o
     hl_error err;
     hl_error_clear(&err);
     hl_run_set_reference(run, 1, r->tol);
+    for (int i = 0; i < n; i++)
+        e[i] = NAN;
+    cli_progress p;
+    cli_progress_begin(&p, "run", "step", o->progress);
+    hl_run_set_progress(run, cli_progress_fn, &p);
     int st = hl_run_orders(e, ef, ord, run, z0, dts, n, r->t, &err);
-    if (st != HL_OK)
+    cli_progress_end(&p);
+    int stopped = st == HL_ESTOP, all = n;
+    if (stopped) { /* the steps done before the interrupt */
+        for (n = 0; n < all && !isnan(e[n]);)
+            n++;
+        fprintf(stderr, "hamlie run: interrupted (%s); the orders of the %d steps done follow\n",
+                err.msg, n);
+    }
+    if (st != HL_OK && !stopped)
         rc = cli_fail(&err);
     else {
         hl_buf out;
         hl_buf_init(&out);
         if (o->format == CLI_JSON) {
             json_head(&out, sys, r, o);
+            jkv_bool(&out, "interrupted", stopped);
             jkv_str(&out, "error_measure", "max over steps of |z_n - z(t_n)|_2");
             jkey(&out, "orders", 0);
             hl_buf_puts(&out, "[");
@@ -684,7 +715,7 @@ static int do_orders(hl_run *run, hl_system *sys, const run_opts *r, const cli_o
                                   log(ef[i - 1] / ef[i]) / log(dts[i - 1] / dts[i]));
             }
         }
-        rc = cli_emit(&out, CLI_OK);
+        rc = cli_emit(&out, stopped ? CLI_INTERRUPTED : CLI_OK);
     }
     free(dts), free(e), free(ef), free(ord);
     return rc;
@@ -713,7 +744,6 @@ static int csv_row_arb(const hl_run_row_arb *row, void *arg)
 {
     csv_arb *ca = arg;
     csv *c = &ca->c;
-    progress(c, row->k);
     if (c->fp == NULL)
         return 0;
     hl_buf *b = &c->buf;
@@ -784,19 +814,17 @@ static int do_run_arb(hl_run *run, hl_system *sys, const run_opts *r, const cli_
         goto done;
     if (want_csv)
         csv_header(c, sys, r);
-    c->progress = isatty(2);
-    c->nsteps = n;
-    struct timespec t0;
-    double w0 = now(&t0);
-    c->last = t0;
+    cli_progress p;
+    start_progress(&p, run, r, o, n, dt);
+    double w0 = now();
     hl_run_stats s;
     memset(&s, 0, sizeof s);
     int st = hl_run_adaptive_arb(run, z0, r->digits, r->t_s, n, r->every, row_arb_keep, &l, &s,
                                  &err);
-    double wall = now(&t0) - w0;
-    if (c->progress && n >= 65536 * 2)
-        fputs("\r\033[K", stderr);
-    if (st != HL_OK) {
+    double wall = now() - w0;
+    cli_progress_end(&p);
+    int stopped = st == HL_ESTOP;
+    if (st != HL_OK && !stopped) {
         csv_flush(c);
         if (!(st == HL_EIO && c->io_error))
             cli_fail(&err);
@@ -805,8 +833,11 @@ static int do_run_arb(hl_run *run, hl_system *sys, const run_opts *r, const cli_
         rc = CLI_ERROR;
         goto done;
     }
-    rc = want_csv ? close_out(c, r, tmpname, 1, &s) : CLI_OK;
-    if (rc == CLI_OK && o->format != CLI_JSON && r->out != NULL) {
+    if (stopped)
+        fprintf(stderr, "hamlie run: interrupted after row %ld of %ld (t = %.17g)\n", s.steps,
+                n, s.t);
+    rc = want_csv ? close_out(c, r, tmpname, !stopped, &s) : CLI_OK;
+    if (rc == CLI_OK && o->format != CLI_JSON && r->out != NULL && !stopped) {
         hl_buf out;
         hl_buf_init(&out);
         put_summary(&out, &s, c, r->out);
@@ -816,12 +847,18 @@ static int do_run_arb(hl_run *run, hl_system *sys, const run_opts *r, const cli_
         hl_buf out;
         hl_buf_init(&out);
         json_head(&out, sys, r, o);
+        jkv_bool(&out, "interrupted", stopped);
         jkv_num(&out, "digits", r->digits);
         jkey(&out, "outputs", 0);
         hl_buf_printf(&out, "%ld", s.steps);
         jkey(&out, "rows", 0);
         hl_buf_printf(&out, "%ld", s.rows);
-        jkv_str(&out, "final_t", r->t_s);
+        if (stopped) { /* the time of the last row, not --t */
+            char ts[40];
+            hl_run_fmt_short(ts, s.t);
+            jkv_str(&out, "final_t", ts);
+        } else
+            jkv_str(&out, "final_t", r->t_s);
         jkey(&out, "final_state", 0);
         hl_buf_puts(&out, "{");
         for (int i = 0; i < l.n2; i++) {
@@ -841,6 +878,8 @@ static int do_run_arb(hl_run *run, hl_system *sys, const run_opts *r, const cli_
         hl_buf_puts(&out, "\n}\n");
         rc = cli_emit(&out, CLI_OK);
     }
+    if (rc == CLI_OK && stopped)
+        rc = CLI_INTERRUPTED;
 done:
     for (int i = 0; i < l.n2; i++)
         flint_free(l.z[i]);
@@ -900,7 +939,8 @@ int cmd_run(int argc, char **argv)
         {"--every", 0},  {"--digits", 0},    {"--observe", CLI_OWN_REPEAT}, {"--no-reference", 1},
         {"--plot", 0},   {"--format", 0}};
     static const cli_begin_spec spec = {own, (int)(sizeof own / sizeof own[0]), found_opt,
-                                        check_opts, CLI_OPT_H | CLI_OPT_MAP | CLI_OPT_ORDER, 64};
+                                        check_opts, CLI_OPT_H | CLI_OPT_MAP | CLI_OPT_ORDER | CLI_OPT_PROGRESS,
+                                        64};
     char **av;
     hl_system *sys;
     int rc = cli_begin(&av, &o, &sys, argc, argv, cmd, &spec, &r);

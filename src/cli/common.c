@@ -9,6 +9,10 @@
 
 int cli_fail(const hl_error *err)
 {
+    if (err->status == HL_ESTOP) { /* by the progress callback: an interrupt */
+        fprintf(stderr, "hamlie: interrupted: %s\n", err->msg);
+        return CLI_INTERRUPTED;
+    }
     fprintf(stderr, "hamlie: error: %s\n", err->msg[0] ? err->msg : hl_status_string(err->status));
     if (err->src == NULL)
         return CLI_ERROR;

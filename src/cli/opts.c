@@ -10,7 +10,8 @@
 #include "cli/cli.h"
 
 enum {
-    O_PAIRS = 256, O_PARAM, O_JSON, O_LATEX, O_INTEGRAL, O_MAP, O_OF, O_TERMS
+    O_PAIRS = 256, O_PARAM, O_JSON, O_LATEX, O_INTEGRAL, O_MAP, O_OF, O_TERMS, O_PROGRESS,
+    O_QUIET
 };
 
 int cli_usage(const cli_command *cmd, const char *fmt, ...)
@@ -153,6 +154,8 @@ static int parse_opts(cli_opts *o, int argc, char **argv, unsigned accept,
         {"order", required_argument, NULL, 'n'},
         {"of", required_argument, NULL, O_OF},
         {"terms", no_argument, NULL, O_TERMS},
+        {"progress", no_argument, NULL, O_PROGRESS},
+        {"quiet", no_argument, NULL, O_QUIET},
         {NULL, 0, NULL, 0},
     };
     hl_buf params;
@@ -208,6 +211,15 @@ static int parse_opts(cli_opts *o, int argc, char **argv, unsigned accept,
             if ((rc = takes(accept, CLI_OPT_TERMS, "--terms", cmd)) < 0)
                 o->terms = 1;
             break;
+        case O_PROGRESS:
+        case O_QUIET: {
+            int m = c == O_PROGRESS ? CLI_PROGRESS_ON : CLI_PROGRESS_OFF;
+            if ((rc = takes(accept, CLI_OPT_PROGRESS, argv[optind - 1], cmd)) < 0 &&
+                o->progress != CLI_PROGRESS_AUTO && o->progress != m)
+                rc = cli_usage(cmd, "--progress and --quiet cannot be used together");
+            o->progress = m;
+            break;
+        }
         case ':':
             rc = cli_usage(cmd, "option '%s' needs a value", argv[optind - 1]);
             break;

@@ -25,7 +25,15 @@ typedef struct drive {
     hl_error *err;
     int st;                  /* status of a failure inside the callback */
     int user;                /* the callback's own non-zero return */
+    long progress_next;      /* the step at which progress is reported next */
+    long progress_spacing;
 } drive;
+
+/* Steps between two calls of the progress callback in a fixed-step run
+ * (a call costs about as much as a step; a step at least 10 ns), and the
+ * longest stretch of the compiled loop between two. */
+#define PROGRESS_STEPS 1024
+#define PROGRESS_FUSED_STEPS 65536
 
 static void stats_start(hl_run_stats *s, long n)
 {
@@ -61,16 +69,16 @@ static int row(drive *d, long k, const double *ref)
     s->sigma = sigma;
     s->steps = k;
     s->t = t;
-    if (d->fn == NULL || !(k % d->every == 0 || k == d->n))
-        return HL_OK;
-    hl_run_row rw = {k, t, r->z, r->vals[0], r->vals + 1, sigma, ref};
-    s->rows++;
-    int u = d->fn(&rw, d->arg);
-    if (u != 0) {
-        d->user = u;
-        return u;
+    if (d->fn != NULL && (k % d->every == 0 || k == d->n)) {
+        hl_run_row rw = {k, t, r->z, r->vals[0], r->vals + 1, sigma, ref};
+        s->rows++;
+        int u = d->fn(&rw, d->arg);
+        if (u != 0) {
+            d->user = u;
+            return u;
+        }
     }
-    return HL_OK;
+    return hl_run_progress_(r, &d->progress_next, d->progress_spacing, k, d->n, t, d->err);
 }
 
 /* A caller's stepper is not trusted to check its result: a value that is
@@ -230,6 +238,8 @@ static long fixed_fused(drive *d, int *st)
     while (*st == HL_OK && k < d->n) {
         long next = d->fn == NULL ? d->n : (k / d->every + 1) * d->every;
         long m = (next > d->n ? d->n : next) - k;
+        if (r->progress != NULL && m > PROGRESS_FUSED_STEPS)
+            m = PROGRESS_FUSED_STEPS;
         memcpy(save, r->z, bytes);
         memcpy(in, r->z, bytes);
         in[n2] = d->dt;
@@ -258,6 +268,8 @@ static int start(drive *d, hl_run *r, const double *z0, double dt, double t, lon
     memset(d, 0, sizeof *d);
     d->r = r, d->dt = dt, d->fn = fn, d->arg = arg, d->s = s, d->err = err;
     d->every = every > 0 ? every : 1;
+    d->progress_next = 1;
+    d->progress_spacing = r->scheme != NULL || r->step != NULL ? PROGRESS_STEPS : 1;
     int st = hl_run_nsteps(&d->n, dt, t, err);
     if (st == HL_OK)
         st = hl_run_check_start(r, z0, err);

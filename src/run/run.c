@@ -105,6 +105,24 @@ const double *hl_run_state(const hl_run *r) { return r->z; }
 
 void hl_run_set_jit(hl_run *r, int on) { r->jit = on; }
 
+void hl_run_set_progress(hl_run *r, hl_progress_fn fn, void *arg)
+{
+    r->progress = fn;
+    r->progress_arg = arg;
+}
+
+int hl_run_progress_(hl_run *r, long *next, long spacing, long k, long n, double t,
+                     hl_error *err)
+{
+    if (r->progress == NULL || k < *next)
+        return HL_OK;
+    *next = k + spacing;
+    if (r->progress((double)k, (double)n, r->progress_arg) == 0)
+        return HL_OK;
+    return hl_error_set(err, HL_ESTOP, NULL, -1, 0, "stopped at step %ld of %ld (t = %.17g)", k,
+                        n, t);
+}
+
 static int is_var(const hl_run *r, const char *name)
 {
     for (int i = 0; i < 2 * r->N; i++)
