@@ -154,7 +154,8 @@ void cli_put_arb(hl_buf *b, const arb_struct *x, long ndig);
  * terminal, a line every few seconds otherwise.  cli_progress_fn is an
  * hl_progress_fn (error.h) with the cli_progress as its argument; it
  * returns non-zero once SIGINT was received (cli_progress_begin catches
- * it; a second one kills), so the library stops between two steps and the
+ * it unless it was ignored, cli_progress_end puts the old handler back; a
+ * second one kills), so the library stops between two steps and the
  * command writes what it has, whole, and exits CLI_INTERRUPTED. */
 typedef struct cli_progress {
     const char *cmd, *unit; /* "run", "step" */
@@ -171,7 +172,6 @@ void cli_progress_say(cli_progress *p, const char *fmt, ...)
 int cli_progress_fn(double done, double total, void *arg);
 void cli_progress_end(cli_progress *p);
 int cli_interrupted(void);
-void cli_catch_interrupt(void);
 
 int cmd_generator(int argc, char **argv);
 int cmd_bracket(int argc, char **argv);

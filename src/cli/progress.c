@@ -26,14 +26,20 @@ static void on_interrupt(int sig)
     interrupted = 1;
 }
 
-void cli_catch_interrupt(void)
+/* SIGINT's disposition before cli_catch_interrupt, put back at the end. */
+static struct sigaction before;
+static int caught;
+
+static void cli_catch_interrupt(void)
 {
     struct sigaction sa;
+    if (caught || sigaction(SIGINT, NULL, &before) != 0 || before.sa_handler == SIG_IGN)
+        return; /* a job started with SIGINT ignored (nohup, a background job) keeps it so */
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_interrupt;
     sigemptyset(&sa.sa_mask);
     sa.sa_flags = SA_RESETHAND; /* a second Ctrl-C kills at once */
-    sigaction(SIGINT, &sa, NULL);
+    caught = sigaction(SIGINT, &sa, NULL) == 0;
 }
 
 int cli_interrupted(void) { return interrupted != 0; }
@@ -126,5 +132,7 @@ void cli_progress_end(cli_progress *p)
     if (p->shown)
         fputs("\r\033[K", stderr);
     p->shown = 0;
-    signal(SIGINT, SIG_DFL);
+    if (caught)
+        sigaction(SIGINT, &before, NULL);
+    caught = 0;
 }
