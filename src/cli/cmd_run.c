@@ -340,80 +340,45 @@ static void plot_close(csv *c)
     c->plot_row = NULL;
 }
 
-/* ---- JSON (hand-written: report.h has no writer for doubles) ------------- */
+/* ---- JSON ------------------------------------------------------------------ */
 
-static void jnum(hl_buf *b, double v)
+static void json_head(hl_json *j, hl_buf *out, hl_system *sys, const run_opts *r,
+                      const cli_opts *o, int interrupted)
 {
-    if (isfinite(v))
-        hl_buf_printf(b, "%.17g", v);
-    else
-        hl_buf_puts(b, "null");
+    hl_json_init_buf(j, out);
+    hl_json_object_begin(j);
+    hl_json_kv_string(j, "command", "run");
+    cli_json_system(j, sys);
+    hl_json_kv_string(j, "H_input", o->H);
+    hl_json_kv_string(j, "scheme",
+                      r->scheme != NULL ? r->scheme : o->map != NULL ? "map" : "equations");
+    hl_json_kv_string(j, "integrator", adaptive(r) ? "adaptive-taylor" : "fixed-step");
+    hl_json_kv_double(j, "t", r->t);
+    hl_json_kv_bool(j, "interrupted", interrupted);
 }
 
-static void jkey(hl_buf *b, const char *k, int first)
-{
-    hl_buf_puts(b, first ? "\n  " : ",\n  ");
-    hl_json_escape(b, k);
-    hl_buf_puts(b, ": ");
-}
-
-static void jkv_num(hl_buf *b, const char *k, double v)
-{
-    jkey(b, k, 0);
-    jnum(b, v);
-}
-
-static void jkv_bool(hl_buf *b, const char *k, int v)
-{
-    jkey(b, k, 0);
-    hl_buf_puts(b, v ? "true" : "false");
-}
-
-static void jkv_str(hl_buf *b, const char *k, const char *s)
-{
-    jkey(b, k, 0);
-    if (s == NULL)
-        hl_buf_puts(b, "null");
-    else
-        hl_json_escape(b, s);
-}
-
-static void json_head(hl_buf *b, hl_system *sys, const run_opts *r, const cli_opts *o)
+/* name -> value of each phase variable, q then p (values: doubles, or the
+ * strings of an Arb run) */
+static void json_state(hl_json *j, const char *key, hl_system *sys, const double *z,
+                       char *const *zs)
 {
     int N = hl_system_ndof(sys);
-    hl_buf_puts(b, "{");
-    jkey(b, "command", 1);
-    hl_json_escape(b, "run");
-    jkey(b, "symbols", 0);
-    hl_buf_puts(b, "{\"coordinates\": [");
-    for (int i = 0; i < N; i++) {
-        hl_buf_puts(b, i ? ", " : "");
-        hl_json_escape(b, hl_system_coord(sys, i));
-    }
-    hl_buf_puts(b, "], \"momenta\": [");
-    for (int i = 0; i < N; i++) {
-        hl_buf_puts(b, i ? ", " : "");
-        hl_json_escape(b, hl_system_momentum(sys, i));
-    }
-    hl_buf_puts(b, "], \"parameters\": [], \"step\": \"D\"}");
-    jkv_str(b, "H_input", o->H);
-    jkv_str(b, "scheme", r->scheme != NULL ? r->scheme : o->map != NULL ? "map" : "equations");
-    jkv_str(b, "integrator", adaptive(r) ? "adaptive-taylor" : "fixed-step");
-    jkv_num(b, "t", r->t);
-}
-
-static void json_state(hl_buf *b, const char *key, hl_system *sys, const double *z)
-{
-    int N = hl_system_ndof(sys);
-    jkey(b, key, 0);
-    hl_buf_puts(b, "{");
+    hl_json_key(j, key);
+    hl_json_object_begin(j);
     for (int i = 0; i < 2 * N; i++) {
-        hl_buf_puts(b, i ? ", " : "");
-        hl_json_escape(b, i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N));
-        hl_buf_puts(b, ": ");
-        jnum(b, z[i]);
+        const char *name = i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N);
+        if (zs != NULL)
+            hl_json_kv_string(j, name, zs[i] != NULL ? zs[i] : "");
+        else
+            hl_json_kv_double(j, name, z[i]);
     }
-    hl_buf_puts(b, "}");
+    hl_json_object_end(j);
+}
+
+static void json_end(hl_json *j)
+{
+    hl_json_object_end(j);
+    hl_json_finish(j);
 }
 
 /* ---- the two modes ------------------------------------------------------ */
@@ -593,29 +558,25 @@ static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts
         hl_buf out;
         hl_buf_init(&out);
         if (o->format == CLI_JSON) {
-            json_head(&out, sys, r, o);
-            jkv_bool(&out, "interrupted", stopped);
-            jkv_num(&out, "dt", dt);
-            jkey(&out, "steps", 0);
-            hl_buf_printf(&out, "%ld", s.steps);
-            jkey(&out, "rows", 0);
-            hl_buf_printf(&out, "%ld", s.rows);
-            jkv_num(&out, "final_t", s.t);
-            json_state(&out, "final_state", sys, hl_run_state(run));
-            jkv_num(&out, "H0", s.H0);
-            jkv_num(&out, "H_final", s.H);
-            jkv_num(&out, "max_abs_dH", s.max_dH);
-            jkv_num(&out, "sigma_final", s.sigma);
-            jkv_num(&out, "max_error", s.max_err);
-            jkv_num(&out, "tol", r->tol);
-            jkey(&out, "taylor_steps", 0);
-            hl_buf_printf(&out, "%ld", s.ref_steps);
-            jkv_str(&out, "out", r->out);
-            jkv_str(&out, "plot", r->plot);
-            jkey(&out, "figure_files", 0);
-            hl_buf_printf(&out, "%d", figures);
-            jkv_num(&out, "wall_time_s", wall);
-            hl_buf_puts(&out, "\n}\n");
+            hl_json j;
+            json_head(&j, &out, sys, r, o, stopped);
+            hl_json_kv_double(&j, "dt", dt);
+            hl_json_kv_int(&j, "steps", s.steps);
+            hl_json_kv_int(&j, "rows", s.rows);
+            hl_json_kv_double(&j, "final_t", s.t);
+            json_state(&j, "final_state", sys, hl_run_state(run), NULL);
+            hl_json_kv_double(&j, "H0", s.H0);
+            hl_json_kv_double(&j, "H_final", s.H);
+            hl_json_kv_double(&j, "max_abs_dH", s.max_dH);
+            hl_json_kv_double(&j, "sigma_final", s.sigma);
+            hl_json_kv_double(&j, "max_error", s.max_err);
+            hl_json_kv_double(&j, "tol", r->tol);
+            hl_json_kv_int(&j, "taylor_steps", s.ref_steps);
+            hl_json_kv_string(&j, "out", r->out);
+            hl_json_kv_string(&j, "plot", r->plot);
+            hl_json_kv_int(&j, "figure_files", figures);
+            hl_json_kv_double(&j, "wall_time_s", wall);
+            json_end(&j);
         } else
             put_summary(&out, &s, &c, r->out);
         rc = cli_emit(&out, CLI_OK);
@@ -682,25 +643,23 @@ static int do_orders(hl_run *run, hl_system *sys, const run_opts *r, const cli_o
         hl_buf out;
         hl_buf_init(&out);
         if (o->format == CLI_JSON) {
-            json_head(&out, sys, r, o);
-            jkv_bool(&out, "interrupted", stopped);
-            jkv_str(&out, "error_measure", "max over steps of |z_n - z(t_n)|_2");
-            jkey(&out, "orders", 0);
-            hl_buf_puts(&out, "[");
+            hl_json j;
+            json_head(&j, &out, sys, r, o, stopped);
+            hl_json_kv_string(&j, "error_measure", "max over steps of |z_n - z(t_n)|_2");
+            hl_json_key(&j, "orders");
+            hl_json_array_begin(&j);
             for (int i = 0; i < n; i++) {
-                hl_buf_puts(&out, i ? ",\n    {\"dt\": " : "\n    {\"dt\": ");
-                jnum(&out, dts[i]);
-                hl_buf_puts(&out, ", \"max_error\": ");
-                jnum(&out, e[i]);
-                hl_buf_puts(&out, ", \"final_error\": ");
-                jnum(&out, ef[i]);
-                hl_buf_puts(&out, ", \"order\": ");
-                jnum(&out, ord[i]);
-                hl_buf_puts(&out, ", \"order_final\": ");
-                jnum(&out, i ? log(ef[i - 1] / ef[i]) / log(dts[i - 1] / dts[i]) : NAN);
-                hl_buf_puts(&out, "}");
+                hl_json_object_begin(&j);
+                hl_json_kv_double(&j, "dt", dts[i]);
+                hl_json_kv_double(&j, "max_error", e[i]);
+                hl_json_kv_double(&j, "final_error", ef[i]);
+                hl_json_kv_double(&j, "order", ord[i]);
+                hl_json_kv_double(&j, "order_final",
+                                  i ? log(ef[i - 1] / ef[i]) / log(dts[i - 1] / dts[i]) : NAN);
+                hl_json_object_end(&j);
             }
-            hl_buf_puts(&out, "\n  ]\n}\n");
+            hl_json_array_end(&j);
+            json_end(&j);
         } else {
             hl_buf_printf(&out, "observed global order to t = %g (error: max over steps of "
                                 "|z_n - z(t_n)|; final: at t)\n", r->t);
@@ -846,36 +805,21 @@ static int do_run_arb(hl_run *run, hl_system *sys, const run_opts *r, const cli_
     if (rc == CLI_OK && o->format == CLI_JSON) {
         hl_buf out;
         hl_buf_init(&out);
-        json_head(&out, sys, r, o);
-        jkv_bool(&out, "interrupted", stopped);
-        jkv_num(&out, "digits", r->digits);
-        jkey(&out, "outputs", 0);
-        hl_buf_printf(&out, "%ld", s.steps);
-        jkey(&out, "rows", 0);
-        hl_buf_printf(&out, "%ld", s.rows);
-        if (stopped) { /* the time of the last row, not --t */
-            char ts[40];
-            hl_run_fmt_short(ts, s.t);
-            jkv_str(&out, "final_t", ts);
-        } else
-            jkv_str(&out, "final_t", r->t_s);
-        jkey(&out, "final_state", 0);
-        hl_buf_puts(&out, "{");
-        for (int i = 0; i < l.n2; i++) {
-            int N = l.n2 / 2;
-            hl_buf_puts(&out, i ? ", " : "");
-            hl_json_escape(&out, i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N));
-            hl_buf_puts(&out, ": ");
-            hl_json_escape(&out, l.z[i] != NULL ? l.z[i] : "");
-        }
-        hl_buf_puts(&out, "}");
-        jkv_num(&out, "H0", s.H0);
-        jkv_num(&out, "max_abs_dH", s.max_dH);
-        jkey(&out, "taylor_steps", 0);
-        hl_buf_printf(&out, "%ld", s.ref_steps);
-        jkv_str(&out, "out", r->out);
-        jkv_num(&out, "wall_time_s", wall);
-        hl_buf_puts(&out, "\n}\n");
+        hl_json j;
+        json_head(&j, &out, sys, r, o, stopped);
+        hl_json_kv_double(&j, "digits", r->digits);
+        hl_json_kv_int(&j, "outputs", s.steps);
+        hl_json_kv_int(&j, "rows", s.rows);
+        char ts[40]; /* interrupted: the time of the last row, not --t */
+        hl_run_fmt_short(ts, s.t);
+        hl_json_kv_string(&j, "final_t", stopped ? ts : r->t_s);
+        json_state(&j, "final_state", sys, NULL, l.z);
+        hl_json_kv_double(&j, "H0", s.H0);
+        hl_json_kv_double(&j, "max_abs_dH", s.max_dH);
+        hl_json_kv_int(&j, "taylor_steps", s.ref_steps);
+        hl_json_kv_string(&j, "out", r->out);
+        hl_json_kv_double(&j, "wall_time_s", wall);
+        json_end(&j);
         rc = cli_emit(&out, CLI_OK);
     }
     if (rc == CLI_OK && stopped)
