@@ -81,11 +81,13 @@ void hl_run_set_reference(hl_run *r, int on, double tol);
 void hl_run_set_jit(hl_run *r, int on);
 
 /* A progress callback (error.h), or NULL: called with the steps done and
- * asked (every 1024 steps of a fixed-step run, every output row of an
- * adaptive one, and when a run's compiled loop reaches a row or 65536
- * steps); when it returns non-zero the run stops after the step it was
- * called at: the rows delivered and the statistics describe that step, and
- * the run returns HL_ESTOP ("stopped at step k of n"). */
+ * asked (every 1024 steps of a fixed-step run, or when its compiled loop
+ * reaches a row or 65536 steps; for an adaptive run at every output row
+ * and, between rows, every ~1024 Taylor steps with a fraction of a row —
+ * the integrator then restarts there, which changes the last bits of the
+ * rows against a run without a callback); when it returns non-zero the run
+ * stops: the rows delivered and the statistics describe the last step (or
+ * row) done, and the run returns HL_ESTOP ("stopped at step k of n"). */
 void hl_run_set_progress(hl_run *r, hl_progress_fn fn, void *arg);
 
 /* z[0..2N-1] (q then p) from "x=1,p=0" (values are formulas in numbers,

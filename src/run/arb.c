@@ -20,7 +20,7 @@ typedef struct drive_arb {
     arb_t H0, d;
     hl_error *err;
     int st, user;
-    long progress_next;
+    double progress_next;
 } drive_arb;
 
 static int row_arb(drive_arb *d, long k, const arb_t t, arb_srcptr z)
@@ -53,7 +53,7 @@ static int row_arb(drive_arb *d, long k, const arb_t t, arb_srcptr z)
             return u;
         }
     }
-    return hl_run_progress_(r, &d->progress_next, 1, k, d->n, s->t, d->err);
+    return hl_run_progress_(r, &d->progress_next, 1, (double)k, d->n, s->t, d->err);
 }
 
 static int arb_fn(const arb_t t, arb_srcptr z, void *arg)

@@ -111,16 +111,16 @@ void hl_run_set_progress(hl_run *r, hl_progress_fn fn, void *arg)
     r->progress_arg = arg;
 }
 
-int hl_run_progress_(hl_run *r, long *next, long spacing, long k, long n, double t,
+int hl_run_progress_(hl_run *r, double *next, double spacing, double done, long n, double t,
                      hl_error *err)
 {
-    if (r->progress == NULL || k < *next)
+    if (r->progress == NULL || done < *next)
         return HL_OK;
-    *next = k + spacing;
-    if (r->progress((double)k, (double)n, r->progress_arg) == 0)
+    *next = done + spacing;
+    if (r->progress(done, (double)n, r->progress_arg) == 0)
         return HL_OK;
-    return hl_error_set(err, HL_ESTOP, NULL, -1, 0, "stopped at step %ld of %ld (t = %.17g)", k,
-                        n, t);
+    return hl_error_set(err, HL_ESTOP, NULL, -1, 0, "stopped at step %ld of %ld (t = %.17g)",
+                        (long)done, n, t);
 }
 
 static int is_var(const hl_run *r, const char *name)

@@ -30,10 +30,11 @@ struct hl_run {
 
 int hl_run_compile_(hl_run *r, hl_error *err);
 
-/* The caller's progress callback when step (or output) k has reached
- * *next, then *next = k + spacing; HL_ESTOP (with k, n and t in the
- * message) when it asks to stop. */
-int hl_run_progress_(hl_run *r, long *next, long spacing, long k, long n, double t,
+/* The caller's progress callback when `done` steps (or output rows; a
+ * fraction between two rows) have reached *next, then *next = done +
+ * spacing; HL_ESTOP (with the step, n and t in the message) when it asks to
+ * stop. */
+int hl_run_progress_(hl_run *r, double *next, double spacing, double done, long n, double t,
                      hl_error *err);
 
 #endif

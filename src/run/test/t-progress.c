@@ -77,6 +77,13 @@ static void stopped_fixed(const char *scheme, int reference, long every, int jit
     fixture_clear(&f);
 }
 
+static int never_fn(double done, double total, void *arg)
+{
+    (void)done, (void)total;
+    ++*(long *)arg;
+    return 0;
+}
+
 static void stopped_adaptive(void)
 {
     fixture f;
@@ -84,17 +91,32 @@ static void stopped_adaptive(void)
         return;
     stopper sp = {40, 0, 0};
     hl_run_set_progress(f.run, stop_fn, &sp);
-    hl_run_stats sa, sb;
+    hl_run_stats sa, sb, sc;
     hl_error err;
     int st = hl_run_adaptive(f.run, f.z0, 1e-12, 0.5, 1000, 1, NULL, NULL, &sa, &err);
-    CHECK(st == HL_ESTOP && sa.steps == 40 && sp.calls == 40); /* every output row */
-    double za[2];
+    CHECK(st == HL_ESTOP && sa.steps == 40 && sp.calls >= 40);
+    double za[2], zc[2];
     memcpy(za, hl_run_state(f.run), sizeof za);
-    hl_run_set_progress(f.run, NULL, NULL);
+    long calls = 0; /* the same run to that row, with a callback: the same bits */
+    hl_run_set_progress(f.run, never_fn, &calls);
     st = hl_run_adaptive(f.run, f.z0, 1e-12, 0.5, 20, 1, NULL, NULL, &sb, &err);
     CHECK(st == HL_OK && sb.steps == 40);
     CHECK(memcmp(za, hl_run_state(f.run), sizeof za) == 0);
     CHECK(sa.max_dH == sb.max_dH);
+    /* rows far apart (4 rows of 500 time units, ~10^4 Taylor steps each):
+     * the callback is still called every few thousand steps, and the run
+     * agrees with the one without a callback to the tolerance */
+    calls = 0;
+    st = hl_run_adaptive(f.run, f.z0, 1e-14, 500, 2000, 1, NULL, NULL, &sb, &err);
+    memcpy(za, hl_run_state(f.run), sizeof za);
+    CHECK_MSG(st == HL_OK && calls >= sb.ref_steps / 4096 && calls > 4, "%ld calls, %ld steps",
+              calls, sb.ref_steps);
+    hl_run_set_progress(f.run, NULL, NULL);
+    st = hl_run_adaptive(f.run, f.z0, 1e-14, 500, 2000, 1, NULL, NULL, &sc, &err);
+    memcpy(zc, hl_run_state(f.run), sizeof zc);
+    CHECK(st == HL_OK && sc.steps == 4);
+    CHECK_MSG(fabs(za[0] - zc[0]) < 1e-9 && fabs(za[1] - zc[1]) < 1e-9, "%g %g",
+              za[0] - zc[0], za[1] - zc[1]);
     /* Arb */
     arb_ptr z0 = _arb_vec_init(2);
     hl_run_init_values_arb(z0, f.sys, "q=1.3,p=0", hl_run_arb_prec(30), &err);
