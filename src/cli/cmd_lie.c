@@ -32,7 +32,7 @@ static void write_item(hl_buf *out, hl_json *j, const lie_item *it, int order, h
         hl_json_key(j, "coefficients");
         hl_json_array_begin(j);
         fmpq_one(f);
-        for (int k = 0; k <= order; k++) {
+        for (int k = 0; k <= order && !cli_interrupted(); k++) { /* big: Ctrl-C stops */
             if (k > 0) {
                 fmpz_mul_ui(fmpq_denref(f), fmpq_denref(f), (ulong)k); /* f = 1/k! */
             }
@@ -126,7 +126,7 @@ static int run(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_err
             hl_json_key(&j, "series");
             hl_json_array_begin(&j);
         }
-        for (int i = 0; i < n; i++)
+        for (int i = 0; i < n && !cli_interrupted(); i++)
             write_item(out, &j, &it[i], order, sys, o);
         if (o->format == CLI_JSON) {
             hl_json_array_end(&j);

@@ -16,7 +16,8 @@ LONG=(run -H "$PEND" --scheme rk4 --dt 0.1 --t 1e9 --init q=1,p=0)
 interrupted() {
     local want=$1 after=$2
     shift 2
-    timeout --preserve-status -s INT "$after" "$HAMLIE" "$@" >"$tmp/out" 2>"$tmp/err"
+    # (killed 5 s later if SIGINT did not stop it)
+    timeout --preserve-status -k 5 -s INT "$after" "$HAMLIE" "$@" >"$tmp/out" 2>"$tmp/err"
     local rc=$?
     if [ "$rc" -eq "$want" ]; then ok; else
         bad "hamlie $* interrupted: exit $rc, want $want"; sed 's/^/    /' "$tmp/err" >&2
@@ -75,6 +76,9 @@ err_has "are kept in '$tmp/r.csv.partial'"
 # ---- the adaptive integrator, in double and in Arb ---------------------------
 interrupted 130 1 run -H "$PEND" --scheme lie --tol 1e-12 --dt 1 --t 1e9 --init q=1,p=0 --json
 python3 -c "import json,sys; d=json.load(open('$tmp/out')); assert d['interrupted'] and d['steps'] > 0" && ok || bad "adaptive --json"
+# rows 10^9 apart (hours each): stopped between two rows all the same
+interrupted 130 1 run -H "$PEND" --scheme lie --tol 1e-15 --t 1e12 --init q=1,p=0 --json
+python3 -c "import json,sys; d=json.load(open('$tmp/out')); assert d['interrupted'] and d['steps'] == 0 and d['taylor_steps'] > 1000" && ok || bad "adaptive, rows far apart"
 interrupted 130 1 run -H "$PEND" --scheme lie --digits 30 --dt 1 --t 1e6 --init q=1,p=0 --json
 python3 - "$tmp/out" <<'PYEOF' >"$tmp/py" 2>&1 && ok || { bad "--digits --json"; cat "$tmp/py" >&2; }
 import json, sys
