@@ -12,12 +12,24 @@ HAMLIE=${1:?usage: progress.sh path/to/hamlie}
 PEND='p^2/2 - cos(q)'
 LONG=(run -H "$PEND" --scheme rk4 --dt 0.1 --t 1e9 --init q=1,p=0)
 
-# interrupted WANT_RC SECONDS args...: hamlie stopped by SIGINT after SECONDS
+# interrupted WANT_RC SECONDS args...: hamlie stopped by SIGINT SECONDS after
+# its job started (with --progress it says so on stderr first; without, the
+# SECONDS count from its start), killed 5 s later if SIGINT did not stop it
 interrupted() {
     local want=$1 after=$2
     shift 2
-    # (killed 5 s later if SIGINT did not stop it)
-    timeout --preserve-status -k 5 -s INT "$after" "$HAMLIE" "$@" >"$tmp/out" 2>"$tmp/err"
+    # a background job of a script starts with SIGINT ignored, and hamlie
+    # keeps it so (as for nohup): env gives it the default disposition
+    env --default-signal=INT "$HAMLIE" "$@" >"$tmp/out" 2>"$tmp/err" &
+    local pid=$! i
+    case " $* " in *" --progress "*)
+        for i in $(seq 300); do grep -q "^hamlie [a-z]*: " "$tmp/err" && break; sleep 0.1; done ;;
+    esac
+    sleep "$after"
+    kill -INT "$pid" 2>/dev/null
+    for i in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+    kill -KILL "$pid" 2>/dev/null
+    wait "$pid"
     local rc=$?
     if [ "$rc" -eq "$want" ]; then ok; else
         bad "hamlie $* interrupted: exit $rc, want $want"; sed 's/^/    /' "$tmp/err" >&2
@@ -44,7 +56,7 @@ PYEOF
 }
 
 # ---- SIGINT, --json: a closed document that says so ------------------------
-interrupted 130 1 "${LONG[@]}" --json
+interrupted 130 0.5 "${LONG[@]}" --json --progress
 python3 - "$tmp/out" <<'PYEOF' >"$tmp/py" 2>&1 && ok || { bad "interrupted --json"; cat "$tmp/py" >&2; }
 import json, math, sys
 d = json.load(open(sys.argv[1]))
@@ -60,26 +72,26 @@ err_has "10000000000 steps (1e+10) of rk4 at dt = 0.1"  # said before it starts
 err_has "interrupted after step"
 
 # the compiled loop (no reference, rows sparse) stops as well
-interrupted 130 1 run -H "$PEND" --scheme stormer-verlet-kdk --dt 0.1 --t 1e11 --init q=1,p=0 --json --no-reference
+interrupted 130 0.5 run -H "$PEND" --scheme stormer-verlet-kdk --dt 0.1 --t 1e11 --init q=1,p=0 --json --no-reference --progress
 python3 -c "import json,sys; d=json.load(open('$tmp/out')); assert d['interrupted'] and d['steps'] > 0" && ok || bad "compiled loop"
 
 # ---- SIGINT, CSV on stdout and in --out: complete to the last row -----------
-interrupted 130 1 "${LONG[@]}"
+interrupted 130 0.5 "${LONG[@]}" --progress
 check_csv "$tmp/out"
 rm -f "$tmp/r.csv"*
-interrupted 130 1 "${LONG[@]}" --out "$tmp/r.csv"
+interrupted 130 0.5 "${LONG[@]}" --out "$tmp/r.csv" --progress
 if [ -f "$tmp/r.csv.partial" ] && [ ! -e "$tmp/r.csv" ] && [ ! -e "$tmp/r.csv.tmp" ]; then ok; else
     bad "--out: want only r.csv.partial, have: $(ls "$tmp" | grep r.csv)"; fi
 check_csv "$tmp/r.csv.partial"
 err_has "are kept in '$tmp/r.csv.partial'"
 
 # ---- the adaptive integrator, in double and in Arb ---------------------------
-interrupted 130 1 run -H "$PEND" --scheme lie --tol 1e-12 --dt 1 --t 1e9 --init q=1,p=0 --json
+interrupted 130 0.5 run -H "$PEND" --scheme lie --tol 1e-12 --dt 1 --t 1e9 --init q=1,p=0 --json --progress
 python3 -c "import json,sys; d=json.load(open('$tmp/out')); assert d['interrupted'] and d['steps'] > 0" && ok || bad "adaptive --json"
 # rows 10^9 apart (hours each): stopped between two rows all the same
-interrupted 130 1 run -H "$PEND" --scheme lie --tol 1e-15 --t 1e12 --init q=1,p=0 --json
+interrupted 130 0.5 run -H "$PEND" --scheme lie --tol 1e-15 --t 1e12 --init q=1,p=0 --json --progress
 python3 -c "import json,sys; d=json.load(open('$tmp/out')); assert d['interrupted'] and d['steps'] == 0 and d['taylor_steps'] > 1000" && ok || bad "adaptive, rows far apart"
-interrupted 130 1 run -H "$PEND" --scheme lie --digits 30 --dt 1 --t 1e6 --init q=1,p=0 --json
+interrupted 130 0.5 run -H "$PEND" --scheme lie --digits 30 --dt 1 --t 1e6 --init q=1,p=0 --json --progress
 python3 - "$tmp/out" <<'PYEOF' >"$tmp/py" 2>&1 && ok || { bad "--digits --json"; cat "$tmp/py" >&2; }
 import json, sys
 d = json.load(open(sys.argv[1]))
@@ -87,7 +99,7 @@ assert d["interrupted"] is True and 0 < d["outputs"] < 10**6
 assert float(d["final_t"]) == d["outputs"]          # rows at t = 1, 2, ...
 PYEOF
 # --orders: the steps done before the interrupt
-interrupted 130 2 run -H "$PEND" --scheme rk4 --orders 0.1,0.05,0.00000001 --t 10 --init q=1,p=0 --json
+interrupted 130 2 run -H "$PEND" --scheme rk4 --orders 0.1,0.05,0.00000001 --t 10 --init q=1,p=0 --json --progress
 python3 - "$tmp/out" <<'PYEOF' >"$tmp/py" 2>&1 && ok || { bad "--orders interrupted"; cat "$tmp/py" >&2; }
 import json, sys
 d = json.load(open(sys.argv[1]))
@@ -97,7 +109,7 @@ assert abs(d["orders"][1]["order"] - 4) < 0.1, d["orders"]    # RK4: 3.97
 PYEOF
 
 # ---- lie: nothing half-written -------------------------------------------------
-interrupted 130 1 lie -H "$PEND" --order 200 --json
+interrupted 130 0.5 lie -H "$PEND" --order 200 --json --progress
 if [ -s "$tmp/out" ]; then bad "lie interrupted printed something"; else ok; fi
 err_has "interrupted"
 
