@@ -2,9 +2,11 @@
  * domain (hl_run_check_start).  Metamorphic: a run stopped by its callback
  * at step k is the run to t = k dt, bit for bit — its rows, its statistics
  * and its state — on every path of the driver (the reference, the plain
- * stepper, the compiled loop, the adaptive integrator, Arb); the callback is
- * called at a bounded rate; a point where H is not finite is refused
- * before the first row, and the Lie series stops at its order. */
+ * stepper, the compiled loop; the adaptive integrator against the same run
+ * with a callback that never stops it, whose probes between rows restart
+ * the integrator; Arb); the callback is called at a bounded rate, also
+ * between rows far apart; a point where H is not finite is refused before
+ * the first row, and the Lie series stops at its order. */
 #include "run_test.h"
 
 typedef struct stopper {
