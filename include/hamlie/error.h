@@ -21,8 +21,15 @@ typedef enum hl_status {
     HL_ENOMEM,  /* allocation failed */
     HL_EUNSUP,  /* a valid request that hamlie cannot carry out */
     HL_ENOCONV, /* an iteration (Newton, quadrature) did not converge */
-    HL_EIO      /* reading or writing a file failed */
+    HL_EIO,     /* reading or writing a file failed */
+    HL_ESTOP    /* stopped by the caller: its progress callback asked to stop */
 } hl_status;
+
+/* The progress of a long computation (a run, a Lie series): the library
+ * calls it at a bounded rate with `done` out of `total` (in the call's own
+ * units: steps, output rows, orders).  A non-zero return stops the
+ * computation, which leaves what it delivered valid and returns HL_ESTOP. */
+typedef int (*hl_progress_fn)(double done, double total, void *arg);
 
 #define HL_ERROR_MSG_MAX 512
 

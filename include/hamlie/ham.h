@@ -107,6 +107,11 @@ int hl_generator_apply(hl_alg *r, const hl_alg *phi, hl_system *sys, hl_error *e
 #define HL_LIE_MAX_TERMS 2000000L
 int hl_lie_terms(hl_alg *terms, const hl_alg *phi, int order, hl_system *sys, hl_error *err);
 
+/* The same, calling progress(k, order, arg) after each g^k phi (may be
+ * NULL); a non-zero return stops it (HL_ESTOP, terms[0..k] computed). */
+int hl_lie_terms_watched(hl_alg *terms, const hl_alg *phi, int order, hl_system *sys,
+                         hl_progress_fn progress, void *arg, hl_error *err);
+
 /* exp(D g) phi truncated after D^order: sum_k D^k/k! g^k phi. */
 int hl_lie_series(hl_alg *r, const hl_alg *phi, int order, hl_system *sys, hl_error *err);
 

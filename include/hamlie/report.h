@@ -45,12 +45,14 @@ void hl_json_array_end(hl_json *j);
 void hl_json_key(hl_json *j, const char *key);       /* inside an object */
 void hl_json_string(hl_json *j, const char *s);      /* NULL writes null */
 void hl_json_int(hl_json *j, long v);
+void hl_json_double(hl_json *j, double v);          /* 17 digits; null if not finite */
 void hl_json_bool(hl_json *j, int v);
 void hl_json_null(hl_json *j);
 
 /* Convenience: key and value in one call. */
 void hl_json_kv_string(hl_json *j, const char *key, const char *s);
 void hl_json_kv_int(hl_json *j, const char *key, long v);
+void hl_json_kv_double(hl_json *j, const char *key, double v);
 void hl_json_kv_bool(hl_json *j, const char *key, int v);
 
 /* Write the final newline; nonzero if the document was not well nested or a

@@ -80,14 +80,34 @@ void hl_run_set_reference(hl_run *r, int on, double tol);
  * allocations show as leaks under LeakSanitizer). */
 void hl_run_set_jit(hl_run *r, int on);
 
+/* A progress callback (error.h), or NULL: called with the steps done and
+ * asked (every 1024 steps of a fixed-step run, or when its compiled loop
+ * reaches a row or 65536 steps; for an adaptive run at every output row
+ * and, between rows, every ~1024 Taylor steps with a fraction of a row —
+ * the integrator then restarts there, which changes the last bits of the
+ * rows against a run without a callback); when it returns non-zero the run
+ * stops: the rows delivered and the statistics describe the last step (or
+ * row) done, and the run returns HL_ESTOP ("stopped at step k of n"). */
+void hl_run_set_progress(hl_run *r, hl_progress_fn fn, void *arg);
+
 /* z[0..2N-1] (q then p) from "x=1,p=0" (values are formulas in numbers,
  * pi and set parameters: "q=pi/2").  Every variable must be given exactly
- * once: a missing one is named. */
+ * once: a missing one is named.  A value that is not finite, or that
+ * underflows in double (1e-400, below DBL_MIN but not 0), is refused
+ * (HL_EDOM), the error pointing at it in init. */
 int hl_run_init_values(double *z, hl_system *sys, const char *init, hl_error *err);
 
 /* The same in Arb at prec bits, from the exact form of each formula. */
 int hl_run_init_values_arb(arb_ptr z, hl_system *sys, const char *init, slong prec,
                            hl_error *err);
+
+/* Is the initial point in H's domain?  HL_EDOM, with the point, when H is
+ * not finite there (Kepler at the origin, log(q) at q < 0); the drivers
+ * check it before their first row, and a caller that writes anything
+ * before the run (a header) checks it first.  The observers may have poles
+ * (x/p at p = 0): they are not checked. */
+int hl_run_check_start(hl_run *r, const double *z0, hl_error *err);
+int hl_run_check_start_arb(hl_run *r, arb_srcptr z0, slong prec, hl_error *err);
 
 /* The number of steps t/dt, with the checks above. */
 int hl_run_nsteps(long *n, double dt, double t, hl_error *err);

@@ -36,6 +36,13 @@ void hl_runplot_free(hl_runplot *rp); /* NULL is a no-op */
 hl_status hl_runplot_add_row(hl_runplot *rp, const double *values, hl_error *err);
 
 size_t hl_runplot_nrows(const hl_runplot *rp);     /* 0 for NULL */
+
+/* max over rows of |H - H0| (H0: the first row's H), NaN without an H
+ * column or rows.  The energy error of the figures is this |H - H0|: read
+ * from a CSV whose H has more digits than a double (hamlie run --digits),
+ * it is computed in Arb from the text, so that a difference of 1e-30 in
+ * H = 0.5 is not drawn as 0. */
+double hl_runplot_max_dH(const hl_runplot *rp);
 const char *hl_runplot_label(const hl_runplot *rp); /* NULL for NULL */
 
 /* Read a CSV file written by `hamlie run` (a header line of names, then rows

@@ -72,6 +72,7 @@ const char *hl_status_string(hl_status status)
     case HL_EUNSUP: return "not supported";
     case HL_ENOCONV: return "no convergence";
     case HL_EIO: return "input/output error";
+    case HL_ESTOP: return "stopped";
     }
     return "unknown status";
 }

@@ -9,7 +9,7 @@
 #define HAMLIE_VERSION "0.1.0"
 
 /* Exit codes (documented in every --help). */
-enum { CLI_OK = 0, CLI_FAILS = 1, CLI_ERROR = 2 };
+enum { CLI_OK = 0, CLI_FAILS = 1, CLI_ERROR = 2, CLI_INTERRUPTED = 130 /* 128 + SIGINT */ };
 
 typedef struct cli_command {
     const char *name;
@@ -28,8 +28,13 @@ enum {
     CLI_OPT_MAP = 1 << 2,      /* --map */
     CLI_OPT_ORDER = 1 << 3,    /* --order, -n */
     CLI_OPT_OF = 1 << 4,       /* --of (repeatable) */
-    CLI_OPT_TERMS = 1 << 5     /* --terms */
+    CLI_OPT_TERMS = 1 << 5,    /* --terms */
+    CLI_OPT_PROGRESS = 1 << 6  /* --progress, --quiet */
 };
+
+/* --progress forces the progress lines, --quiet silences them; by default
+ * a job says how far it got once it has run for a second or two. */
+enum { CLI_PROGRESS_AUTO, CLI_PROGRESS_ON, CLI_PROGRESS_OFF };
 
 typedef enum cli_format { CLI_TEXT, CLI_JSON, CLI_LATEX } cli_format;
 
@@ -43,6 +48,7 @@ typedef struct cli_opts {
     const char **of;          /* --of values */
     int nof;
     int order, have_order, terms;
+    int progress;             /* CLI_PROGRESS_* */
     char **args;              /* positional arguments */
     int nargs;
 } cli_opts;
@@ -56,15 +62,26 @@ void cli_opts_clear(cli_opts *o);
 int cli_usage(const cli_command *cmd, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 
+/* *slot = value for an option that takes one value: given again with
+ * another value it is refused (the last one would silently win).  Returns
+ * -1, or 2 after the usage message. */
+int cli_once(const char **slot, const char *value, const char *opt, const cli_command *cmd);
+
 /* A command's own options, taken out of argv before cli_parse sees the rest
  * (kept in order): "--name VALUE" and "--name=VALUE", or just "--name" for a
  * flag.  Values are taken whole, so "--dt -1" reaches the command's range
  * check; nothing after "--" is taken.  found(arg, k, value) is called for
- * each option own[k] met (value NULL for a flag).  Returns -1, or 2 after a
- * usage message (an option without its value). */
+ * each option own[k] met (value NULL for a flag).  A CLI_OWN_VALUE given twice with different values is refused (cli_once).
+ * Returns -1, or 2 after a usage message (an option without its value, or
+ * given twice). */
+enum {
+    CLI_OWN_VALUE = 0, /* --name VALUE, once */
+    CLI_OWN_FLAG = 1,  /* --name */
+    CLI_OWN_REPEAT = 2 /* --name VALUE, any number of times (--observe) */
+};
 typedef struct cli_own {
     const char *name;
-    int flag;
+    int kind; /* CLI_OWN_* */
 } cli_own;
 int cli_take_own(int *argc, char **argv, const cli_own *own, int n,
                  void (*found)(void *arg, int k, const char *value), void *arg,
@@ -105,7 +122,8 @@ typedef struct cli_begin_spec {
 int cli_begin(char ***av, cli_opts *o, hl_system **sys, int argc, char **argv,
               const cli_command *cmd, const cli_begin_spec *spec, void *arg);
 
-/* Print an error with its formula and a caret under err->pos; returns 2. */
+/* Print an error with its formula and a caret under err->pos; returns 2
+ * (CLI_INTERRUPTED for HL_ESTOP: the job was interrupted). */
 int cli_fail(const hl_error *err);
 
 /* Write the finished output to stdout and make sure it got there; returns
@@ -134,6 +152,31 @@ char *cli_image_name(hl_system *sys, int a);
 
 /* x's midpoint with ndig significant digits (arb_get_str, no radius). */
 void cli_put_arb(hl_buf *b, const arb_struct *x, long ndig);
+
+/* ---- long jobs (progress.c) ---------------------------------------------
+ * On standard error: a line said at the start (cli_progress_say), then
+ * "hamlie run: step 1200 of 5000 (24.0%), about 3 s left", in place on a
+ * terminal, a line every few seconds otherwise.  cli_progress_fn is an
+ * hl_progress_fn (error.h) with the cli_progress as its argument; it
+ * returns non-zero once SIGINT was received (cli_progress_begin catches
+ * it unless it was ignored, cli_progress_end puts the old handler back; a
+ * second one kills), so the library stops between two steps and the
+ * command writes what it has, whole, and exits CLI_INTERRUPTED. */
+typedef struct cli_progress {
+    const char *cmd, *unit; /* "run", "step" */
+    int mode;               /* CLI_PROGRESS_* */
+    int tty, shown;         /* stderr is a terminal; a line is in place on it */
+    int estimate;           /* say the time left (rates that are steady) */
+    long updates;
+    double start, last;     /* monotonic seconds */
+    char detail[96];        /* said after the count: "(q, 1 of 2)" */
+} cli_progress;
+void cli_progress_begin(cli_progress *p, const char *cmd, const char *unit, int mode);
+void cli_progress_say(cli_progress *p, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+int cli_progress_fn(double done, double total, void *arg);
+void cli_progress_end(cli_progress *p);
+int cli_interrupted(void);
 
 int cmd_generator(int argc, char **argv);
 int cmd_bracket(int argc, char **argv);

@@ -16,6 +16,13 @@
 static struct {
     const char *init, *aa, *dt, *digits;
     int steps;
+    /* --json with --steps, --action-angle, --init: the text goes to a
+     * scratch buffer and what it says goes to j as fields (j_*, put_*):
+     * sections are objects (the steps an array of objects) under the top
+     * level, kinds[] the '{' or '[' of each one open */
+    hl_json *j;
+    int depth;
+    char kinds[4];
 } ex;
 
 const char cmd_exact_help[] =
@@ -212,9 +219,129 @@ static double eval_at(const hl_alg *a, hl_system *sys, double q, double p, doubl
     return x;
 }
 
+/* ---- --json for the modes that print as they go ------------------------------ */
+
+static void j_push(char kind)
+{
+    if (kind == '[')
+        hl_json_array_begin(ex.j);
+    else
+        hl_json_object_begin(ex.j);
+    ex.kinds[ex.depth++] = kind;
+}
+
+static void j_close_to(int depth)
+{
+    while (ex.depth > depth) {
+        if (ex.kinds[--ex.depth] == '[')
+            hl_json_array_end(ex.j);
+        else
+            hl_json_object_end(ex.j);
+    }
+}
+
+/* A new object under the top level (the previous section closed). */
+static void j_section(const char *key)
+{
+    if (ex.j == NULL)
+        return;
+    j_close_to(0);
+    hl_json_key(ex.j, key);
+    j_push('{');
+}
+
+static void j_bool(const char *key, int v)
+{
+    if (ex.j != NULL)
+        hl_json_kv_bool(ex.j, key, v);
+}
+
+static void j_double(const char *key, double v)
+{
+    if (ex.j != NULL)
+        hl_json_kv_double(ex.j, key, v);
+}
+
+static void j_string(const char *key, const char *v)
+{
+    if (ex.j != NULL)
+        hl_json_kv_string(ex.j, key, v);
+}
+
+/* A formula typed in hamlie's syntax as SymPy reads it (as it is when it
+ * does not parse, which the tests would catch). */
+static char *sympy_of(const char *text, hl_system *sys)
+{
+    const hl_expr *e = NULL;
+    hl_error e2;
+    if (hl_parse(&e, hl_system_pool(sys), text, &e2) == HL_OK)
+        return hl_expr_print(e, HL_STYLE_SYMPY);
+    return hl_xstrdup(text);
+}
+
+/* A formula in hamlie's syntax, in JSON only (put_formula also prints it). */
+static void j_formula(const char *key, const char *text, hl_system *sys)
+{
+    if (ex.j == NULL)
+        return;
+    char *s = sympy_of(text, sys);
+    hl_json_kv_string(ex.j, key, s);
+    free(s);
+}
+
+/* An object under the current section: the final state of --init. */
+static void j_object(const char *key)
+{
+    if (ex.j == NULL)
+        return;
+    hl_json_key(ex.j, key);
+    j_push('{');
+}
+
+static void j_arb(const char *key, const arb_struct *x, long ndig)
+{
+    if (ex.j == NULL)
+        return;
+    char *s = arb_get_str(x, ndig, ARB_STR_NO_RADIUS);
+    hl_json_kv_string(ex.j, key, s);
+    flint_free(s);
+}
+
+/* "step 3: the generating function ...\n": the line, or in JSON an element
+ * {"step": 3, "what": "the generating function ...", "formulas": {...}} of
+ * the array "steps", whose formulas put_formula then adds. */
+static void put_step(hl_buf *out, const char *line)
+{
+    int n = 0, at = 0;
+    if (ex.j == NULL || sscanf(line, "step %d: %n", &n, &at) != 1 || at == 0) {
+        hl_buf_puts(out, line);
+        return;
+    }
+    if (ex.depth == 0 || ex.kinds[0] != '[') {
+        j_close_to(0);
+        hl_json_key(ex.j, "steps");
+        j_push('[');
+    }
+    j_close_to(1);
+    j_push('{');
+    hl_json_kv_int(ex.j, "step", n);
+    char *what = hl_xstrdup(line + at);
+    what[strcspn(what, "\n")] = '\0';
+    hl_json_kv_string(ex.j, "what", what);
+    free(what);
+    hl_json_key(ex.j, "formulas");
+    j_push('{');
+}
+
 static void put_formula(hl_buf *out, const char *lhs, const char *rhs, hl_system *sys,
                         const cli_opts *o)
 {
+    if (ex.j != NULL) {
+        char *s = sympy_of(rhs, sys);
+        hl_json_kv_string(ex.j, lhs, s);
+        free(s);
+        return;
+    }
     if (o->format == CLI_LATEX) {
         const hl_expr *e = NULL;
         hl_error e2;
@@ -234,11 +361,15 @@ static void put_formula(hl_buf *out, const char *lhs, const char *rhs, hl_system
 
 static void put_images(hl_buf *out, const hl_alg *img, hl_system *sys, const cli_opts *o)
 {
+    hl_style style = ex.j != NULL ? HL_STYLE_SYMPY
+                     : o->format == CLI_LATEX ? HL_STYLE_LATEX : HL_STYLE_TEXT;
     for (int i = 0; i < 2 * hl_system_ndof(sys); i++) {
         char *nm = cli_image_name(sys, i);
-        char *s = hl_format_alg(&img[i], hl_system_ctx(sys), hl_system_pool(sys),
-                                o->format == CLI_LATEX ? HL_STYLE_LATEX : HL_STYLE_TEXT);
-        hl_buf_printf(out, "  %s = %s\n", nm, s);
+        char *s = hl_format_alg(&img[i], hl_system_ctx(sys), hl_system_pool(sys), style);
+        if (ex.j != NULL)
+            hl_json_kv_string(ex.j, nm, s);
+        else
+            hl_buf_printf(out, "  %s = %s\n", nm, s);
         free(nm), free(s);
     }
 }
@@ -281,6 +412,8 @@ static int run_aa(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_
     st = hl_exact_aa_verify(&ok, why, sizeof why, &aa, sys, err);
     if (st != HL_OK)
         return st;
+    j_bool("verified", ok);
+    j_string("rejected_because", ok ? NULL : why);
     if (!ok) {
         hl_buf_printf(out, "action-angle map rejected: %s\n", why);
         *code = CLI_FAILS;
@@ -294,6 +427,7 @@ static int run_aa(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_
     if (st == HL_OK) {
         hl_buf_printf(out, "exact scheme Q = q(theta + nu %s, I), P = p(theta + nu %s, I):\n",
                       hl_system_step(sys), hl_system_step(sys));
+        j_section("scheme");
         put_images(out, img, sys, o);
         *code = CLI_OK;
     }
@@ -361,11 +495,13 @@ static int steps_check(hl_buf *out, int *code, hl_system *sys, const cli_opts *o
     if (st == HL_OK) {
         hl_buf_printf(out, "result: Q = r(theta(q, gamma) + nu %s, gamma), P = s(...):\n",
                       hl_system_step(sys));
+        j_section("result");
         put_images(out, img, sys, o);
         hl_alg *cf = hl_alg_vec_new(2, hl_system_ctx(sys));
         st = hl_scheme_linear_flow(cf, sys, err);
         if (st == HL_OK) {
             hl_buf_puts(out, "simplified (the closed form it equals):\n");
+            j_section("closed_form");
             put_images(out, cf, sys, o);
         }
         hl_alg_vec_free(cf, 2, hl_system_ctx(sys));
@@ -373,6 +509,12 @@ static int steps_check(hl_buf *out, int *code, hl_system *sys, const cli_opts *o
         hl_buf_printf(out, "check the action-angle map: %s%s\n", aok ? "yes" : "NO: ", why);
         hl_buf_printf(out, "check the result equals the closed form (max diff %.2g): %s\n",
                       maxd, cok ? "yes" : "NO");
+        j_section("checks");
+        j_bool("dK_dq_is_p_and_dK_dI_is_theta", ok);
+        j_bool("action_angle_map", aok);
+        j_string("action_angle_map_rejected_because", aok ? NULL : why);
+        j_bool("equals_closed_form", cok);
+        j_double("max_difference_from_closed_form", maxd);
         *code = ok && aok && cok ? CLI_OK : CLI_FAILS;
     }
     hl_alg_vec_free(img, 2, hl_system_ctx(sys));
@@ -443,22 +585,27 @@ static int run_steps_linear(hl_buf *out, int *code, hl_system *sys, const cli_op
     else
         hl_buf_printf(out, "H = %s^2/(2*m) + g*%s, a uniform field, with m = %s, g = %s\n", p, q,
                       ms, gs);
-    hl_buf_puts(out, "step 1: the integral of motion as the action\n");
+    j_section("form");
+    j_string("kind", free_ ? "free particle" : "uniform field");
+    j_formula("m", ms, sys);
+    if (!free_)
+        j_formula("g", gs, sys);
+    put_step(out, "step 1: the integral of motion as the action\n");
     put_formula(out, "I", I[0], sys, o);
-    hl_buf_puts(out, "step 2: the momentum from I (eps = +1 or -1, the branch)\n");
+    put_step(out, "step 2: the momentum from I (eps = +1 or -1, the branch)\n");
     snprintf(pf, sizeof pf, free_ ? "I" : "eps*sqrt(2*m*(I - g*%s))", q);
     put_formula(out, p, pf, sys, o);
-    hl_buf_puts(out, "step 3: the generating function K(q, I) = int p dq\n");
+    put_step(out, "step 3: the generating function K(q, I) = int p dq\n");
     put_formula(out, "K", K[0], sys, o);
-    hl_buf_puts(out, free_ ? "step 4: the angle theta = dK/dI (it does not come back)\n"
-                           : "step 4: the angle theta = dK/dI (in units of time)\n");
+    put_step(out, free_ ? "step 4: the angle theta = dK/dI (it does not come back)\n"
+                        : "step 4: the angle theta = dK/dI (in units of time)\n");
     put_formula(out, "theta", th[0], sys, o);
-    hl_buf_puts(out, "step 5: the inverse\n");
+    put_step(out, "step 5: the inverse\n");
     put_formula(out, q, rq[0], sys, o);
     put_formula(out, p, rp[0], sys, o);
-    hl_buf_puts(out, "step 6: the frequency nu = {theta, H}\n");
+    put_step(out, "step 6: the frequency nu = {theta, H}\n");
     put_formula(out, "nu", nu[0], sys, o);
-    hl_buf_puts(out, "step 7: the constant of the action\n");
+    put_step(out, "step 7: the constant of the action\n");
     put_formula(out, "gamma", I[0], sys, o);
     hl_buf spec;
     hl_buf_init(&spec);
@@ -541,13 +688,17 @@ static int run_steps(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, 
     else
         hl_buf_printf(out, "H = %s^2/(2*m) + k*%s^2/2 with m = %.*s, k = %.*s\n", p, q,
                       (int)strlen(m) - 2, m + 1, (int)strlen(k) - 2, k + 1);
-    hl_buf_puts(out, "step 1: the integral of motion as the action\n");
+    j_section("form");
+    j_string("kind", "oscillator");
+    j_formula("m", m, sys);
+    j_formula("k", k, sys);
+    put_step(out, "step 1: the integral of motion as the action\n");
     put_formula(out, "I", unit ? F("(%s^2 + %s^2)/2", p, q) : F("%s^2/(2*m) + k*%s^2/2", p, q),
                 sys, o);
-    hl_buf_puts(out, "step 2: the momentum from I (eps = +1 or -1, the branch)\n");
+    put_step(out, "step 2: the momentum from I (eps = +1 or -1, the branch)\n");
     put_formula(out, p, unit ? F("eps*sqrt(2*I - %s^2)", q) : F("eps*sqrt(2*m*I - m*k*%s^2)", q),
                 sys, o);
-    hl_buf_puts(out, "step 3: the generating function K(q, I) = int p dq\n");
+    put_step(out, "step 3: the generating function K(q, I) = int p dq\n");
     put_formula(out, "K",
                 unit ? F("eps*(%s/2*sqrt(2*I - %s^2) + I*atan(%s/sqrt(2*I - %s^2)))", q, q, q, q)
                      : F("eps*(%s/2*sqrt(2*m*I - m*k*%s^2) + I*sqrt(m/k)*atan(%s*sqrt(m*k)/"
@@ -555,17 +706,17 @@ static int run_steps(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, 
                 sys, o);
     /* dK/dI = atan(q/p) on either branch of p; atan2 joins the branches
      * across p = 0 (it differs from atan by a constant, pi, where p < 0) */
-    hl_buf_puts(out, "step 4: the angle theta = dK/dI (in units of time; atan2 continues it "
+    put_step(out, "step 4: the angle theta = dK/dI (in units of time; atan2 continues it "
                      "across p = 0)\n");
     put_formula(out, "theta",
                 unit ? F("atan2(%s, %s)", q, p) : F("sqrt(m/k)*atan2(sqrt(m*k)*%s, %s)", q, p), sys,
                 o);
-    hl_buf_puts(out, "step 5: the inverse\n");
+    put_step(out, "step 5: the inverse\n");
     put_formula(out, q, unit ? "sqrt(2*I)*sin(theta)" : "sqrt(2*I/k)*sin(sqrt(k/m)*theta)", sys, o);
     put_formula(out, p, unit ? "sqrt(2*I)*cos(theta)" : "sqrt(2*m*I)*cos(sqrt(k/m)*theta)", sys, o);
-    hl_buf_puts(out, "step 6: the frequency nu = {theta, H}\n");
+    put_step(out, "step 6: the frequency nu = {theta, H}\n");
     put_formula(out, "nu", "1", sys, o);
-    hl_buf_puts(out, "step 7: the constant of the action\n");
+    put_step(out, "step 7: the constant of the action\n");
     put_formula(out, "gamma", unit ? F("(%s^2 + %s^2)/2", p, q) : F("%s^2/(2*m) + k*%s^2/2", p, q),
                 sys, o);
     /* the same formulas with the values of m and k, for the checks */
@@ -617,6 +768,9 @@ static int run_numeric_arb(hl_buf *out, int *code, hl_system *sys, double dt,
         hl_buf_printf(out, "in Arb at %d digits: period T = ", nd);
         cli_put_arb(out, T, nd);
         hl_buf_puts(out, "\n");
+        j_section("arb");
+        j_double("digits", nd);
+        j_arb("period", T, nd);
     }
     _arb_vec_set(w, z, 2);
     arb_set_d(h, dt);
@@ -637,10 +791,12 @@ static int run_numeric_arb(hl_buf *out, int *code, hl_system *sys, double dt,
     if (st == HL_OK) {
         double dmax = 0, ddouble = 0;
         hl_buf_printf(out, "after 8 exact steps of %s = %g in Arb:", hl_system_step(sys), dt);
+        j_object("final_state");
         for (int i = 0; i < 2; i++) {
             char *nm = cli_image_name(sys, i);
             hl_buf_printf(out, " %s = ", nm);
             cli_put_arb(out, z + i, nd);
+            j_arb(nm, z + i, nd);
             free(nm);
             arb_sub(d, z + i, w + i, prec);
             dmax = fmax(dmax, fabs(arf_get_d(arb_midref(d), ARF_RND_NEAR)));
@@ -649,6 +805,9 @@ static int run_numeric_arb(hl_buf *out, int *code, hl_system *sys, double dt,
         hl_buf_printf(out, "\nmax difference from the Arb integrator over t = %g: %.3g\n",
                       8 * dt, dmax);
         hl_buf_printf(out, "max difference of the double exact scheme from it: %.3g\n", ddouble);
+        j_close_to(1);
+        j_double("max_difference_from_arb_integrator", dmax);
+        j_double("max_difference_of_double_scheme", ddouble);
         *code = dmax < pow(10.0, 5 - digits) * 8 * fmax(1.0, fabs(dt)) ? CLI_OK : CLI_FAILS;
     }
     hl_flow_arb_free(fa);
@@ -695,6 +854,10 @@ static int run_numeric(hl_buf *out, int *code, hl_system *sys, const cli_opts *o
     } else
         hl_buf_printf(out, "H quadratic: the exact step is exp(%s A) (matrix exponential)\n",
                       hl_system_step(sys));
+    j_section("orbit");
+    j_bool("quadratic", hl_exact_flow_is_linear(f));
+    j_double("period", T);
+    j_double("frequency", 2 * M_PI / T);
     /* reference: the Taylor integrator at 1e-15 */
     hl_tape *tape = NULL;
     hl_flow *fl = NULL;
@@ -723,6 +886,18 @@ static int run_numeric(hl_buf *out, int *code, hl_system *sys, const cli_opts *o
         }
         hl_buf_printf(out, "\nmax difference from the Taylor integrator (tol 1e-15): %.3g\n",
                       maxd);
+        j_section("exact_steps");
+        j_double("dt", dt);
+        j_double("count", 8);
+        j_object("final_state");
+        for (int i = 0; i < 2 * N; i++) {
+            char *nm = cli_image_name(sys, i);
+            j_double(nm, z[i]);
+            free(nm);
+        }
+        j_close_to(1);
+        j_double("max_difference_from_taylor", maxd);
+        j_double("taylor_tol", 1e-15);
         *code = maxd < 1e-11 ? CLI_OK : CLI_FAILS;
     }
     if (st == HL_OK && ex.digits != NULL) {
@@ -737,17 +912,53 @@ static int run_numeric(hl_buf *out, int *code, hl_system *sys, const cli_opts *o
     return st;
 }
 
-static int run(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_error *err)
+static int run_mode(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_error *err)
 {
-    if ((ex.aa != NULL || ex.steps || ex.init != NULL) && o->format == CLI_JSON)
-        return hl_error_set(err, HL_EUNSUP, NULL, -1, 0,
-                            "--json is not available with --steps, --action-angle or --init yet");
     if (ex.aa != NULL)
         return run_aa(out, code, sys, o, err);
     if (ex.steps)
         return run_steps(out, code, sys, o, err);
-    if (ex.init != NULL)
-        return run_numeric(out, code, sys, o, err);
+    return run_numeric(out, code, sys, o, err);
+}
+
+/* The modes in JSON: their text into a scratch buffer, their fields into
+ * the document (docs/json.md, "exact"). */
+static int run_json(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_error *err)
+{
+    hl_json j;
+    hl_buf text;
+    hl_buf_init(&text);
+    hl_json_init_buf(&j, out);
+    hl_json_object_begin(&j);
+    hl_json_kv_string(&j, "command", "exact");
+    cli_json_system(&j, sys);
+    hl_json_kv_string(&j, "mode", ex.aa != NULL ? "action_angle" : ex.steps ? "steps" : "init");
+    if (ex.aa != NULL || ex.steps) { /* the names the formulas use besides the system's */
+        hl_json_key(&j, "formula_symbols");
+        hl_json_array_begin(&j);
+        static const char *const names[] = {"I", "theta", "eps", "gamma", "nu", "m", "k", "g"};
+        for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+            hl_json_string(&j, names[i]);
+        hl_json_array_end(&j);
+    }
+    ex.j = &j;
+    ex.depth = 0;
+    int st = run_mode(&text, code, sys, o, err);
+    j_close_to(0);
+    ex.j = NULL;
+    hl_json_kv_bool(&j, "all_checks_hold", *code == CLI_OK);
+    hl_json_kv_bool(&j, "numeric_zero_test", hl_alg_ctx_numeric_used(hl_system_ctx(sys)));
+    hl_json_object_end(&j);
+    hl_json_finish(&j);
+    hl_buf_clear(&text);
+    return st;
+}
+
+static int run(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_error *err)
+{
+    if (ex.aa != NULL || ex.steps || ex.init != NULL)
+        return o->format == CLI_JSON ? run_json(out, code, sys, o, err)
+                                     : run_mode(out, code, sys, o, err);
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     int M = 2 * hl_system_ndof(sys), n = o->have_order ? o->order : 8;
     hl_alg *img = hl_alg_vec_new(M, ctx), *br = hl_alg_vec_new(M * M, ctx);

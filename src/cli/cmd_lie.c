@@ -1,4 +1,5 @@
 /* hamlie lie: the Lie series exp(D g) phi = sum_k D^k/k! g^k phi (paper §2). */
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "cli/cli.h"
@@ -32,7 +33,7 @@ static void write_item(hl_buf *out, hl_json *j, const lie_item *it, int order, h
         hl_json_key(j, "coefficients");
         hl_json_array_begin(j);
         fmpq_one(f);
-        for (int k = 0; k <= order; k++) {
+        for (int k = 0; k <= order && !cli_interrupted(); k++) { /* big: Ctrl-C stops */
             if (k > 0) {
                 fmpz_mul_ui(fmpq_denref(f), fmpq_denref(f), (ulong)k); /* f = 1/k! */
             }
@@ -82,6 +83,10 @@ static void write_item(hl_buf *out, hl_json *j, const lie_item *it, int order, h
     free(phi);
 }
 
+/* From this order the series says what it computes before it starts: it
+ * may take a while (Kepler to order 200: minutes). */
+#define PLAN_ORDER 60
+
 static int run(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_error *err)
 {
     int order = o->have_order ? o->order : 4;
@@ -93,6 +98,12 @@ static int run(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_err
     hl_alg_init(&phi, ctx);
     for (int i = 0; i < n; i++)
         it[i].terms = hl_alg_vec_new(order + 1 > 0 ? order + 1 : 1, ctx);
+    cli_progress p;
+    cli_progress_begin(&p, "lie", "order", o->progress);
+    p.estimate = 0; /* each order costs more than the one before */
+    if (o->progress == CLI_PROGRESS_ON || order >= PLAN_ORDER)
+        cli_progress_say(&p, "the Lie series of %d function%s to order %d", n, n > 1 ? "s" : "",
+                         order);
     for (int i = 0; i < n && st == HL_OK; i++) {
         if (o->nof) {
             it[i].text = o->of[i];
@@ -105,7 +116,8 @@ static int run(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_err
             it[i].text = i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N);
             hl_alg_gen(&phi, i, ctx);
         }
-        st = hl_lie_terms(it[i].terms, &phi, order, sys, err);
+        snprintf(p.detail, sizeof p.detail, "for %.40s (%d of %d)", it[i].text, i + 1, n);
+        st = hl_lie_terms_watched(it[i].terms, &phi, order, sys, cli_progress_fn, &p, err);
     }
     if (st == HL_OK) {
         hl_json j;
@@ -118,7 +130,7 @@ static int run(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_err
             hl_json_key(&j, "series");
             hl_json_array_begin(&j);
         }
-        for (int i = 0; i < n; i++)
+        for (int i = 0; i < n && !cli_interrupted(); i++)
             write_item(out, &j, &it[i], order, sys, o);
         if (o->format == CLI_JSON) {
             hl_json_array_end(&j);
@@ -127,7 +139,12 @@ static int run(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_err
             hl_json_finish(&j);
         } else
             cli_numeric_note(out, sys, o->format);
+        /* an interrupt while the result was formatted: nothing is printed */
+        if (cli_interrupted())
+            st = hl_error_set(err, HL_ESTOP, NULL, -1, 0,
+                              "while the result was written (nothing printed)");
     }
+    cli_progress_end(&p);
     for (int i = 0; i < n; i++)
         hl_alg_vec_free(it[i].terms, order + 1 > 0 ? order + 1 : 1, ctx);
     free(it);
@@ -154,7 +171,8 @@ static int check(const cli_opts *o, const cli_command *cmd, const char **extra)
 
 int cmd_lie(int argc, char **argv)
 {
-    static const cli_spec spec = {"lie", CLI_OPT_H | CLI_OPT_ORDER | CLI_OPT_OF | CLI_OPT_TERMS,
+    static const cli_spec spec = {"lie", CLI_OPT_H | CLI_OPT_ORDER | CLI_OPT_OF | CLI_OPT_TERMS |
+                                             CLI_OPT_PROGRESS,
                                   check, run};
     return cli_main(argc, argv, &spec);
 }

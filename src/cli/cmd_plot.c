@@ -85,6 +85,7 @@ static void write_output(hl_buf *out, cli_format f, const plot_opts *p, const ch
             hl_json_kv_string(&j, "file", files[r]);
             hl_json_kv_string(&j, "label", hl_runplot_label(runs[r]));
             hl_json_kv_int(&j, "rows", (long)hl_runplot_nrows(runs[r]));
+            hl_json_kv_double(&j, "max_abs_dH", hl_runplot_max_dH(runs[r]));
             hl_json_object_end(&j);
         }
         hl_json_array_end(&j);

@@ -31,9 +31,10 @@ const char cmd_run_help[] =
     "  --scheme NAME        a scheme of the catalog (hamlie schemes lists them)\n"
     "  --map 'X = ...; P = ...'   the user's explicit map (D is the step)\n"
     "  --equations '...'    the user's implicit scheme, e.g. '(X-x)/D = ...; ...'\n"
-    "  -n, --order N        the order of --scheme lie with --dt (default 4): the\n"
-    "                       same as --scheme lieN\n"
-    "  --dt STEP            the step (> 0); t/dt must be a whole number\n"
+    "  -n, --order N        the order of --scheme lie with --dt (1..200, default 4):\n"
+    "                       the same as --scheme lieN\n"
+    "  --dt STEP            the step (> 0, required for a fixed-step scheme); t/dt\n"
+    "                       must be a whole number\n"
     "  --t TIME             the final time (>= 0)\n"
     "  --init x=1,p=0       the initial point (values may be formulas: q=pi/2)\n"
     "  --every K            write every K-th row (and the last; default 1)\n"
@@ -64,10 +65,16 @@ const char cmd_run_help[] =
     "                       printed with D digits; the initial values are read at\n"
     "                       that precision: py=sqrt(3) is sqrt(3) to D digits)\n"
     "\n"
+    "  --progress           show progress on stderr from the start (else after a\n"
+    "                       second or two); --quiet: none\n"
+    "\n"
     "A run stops at a blow-up (a value not finite) or a Newton failure, with the\n"
     "step and the time; the rows written before stay valid CSV (with --out they\n"
-    "are kept in FILE.partial).\n"
-    "Exit status: 0 the run completed; 2 usage or input error, or the run failed.\n"
+    "are kept in FILE.partial).  Ctrl-C (SIGINT) stops it the same way, after a\n"
+    "whole step: the CSV complete to its last row, the --json summary written with\n"
+    "\"interrupted\": true.\n"
+    "Exit status: 0 the run completed; 2 usage or input error, or the run failed;\n"
+    "130 interrupted.\n"
     "Example: hamlie run -H '(p^2+x^2)/2' --scheme euler --dt 0.1 --t 20 --init x=1,p=0\n";
 
 /* The options proper to run. */
@@ -107,6 +114,8 @@ static int parse_double(double *v, const char *s, const char *opt, const cli_com
     return -1;
 }
 
+static int adaptive(const run_opts *r);
+
 /* The usage checks of run's options, after parsing (cli_begin). */
 static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
 {
@@ -128,9 +137,6 @@ static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
         if (r->scheme == NULL || strcmp(r->scheme, "lie") != 0 || r->orders != NULL)
             return cli_usage(cmd, "--digits is for the adaptive integrator: --scheme lie");
     }
-    if (o->have_order && (r->scheme == NULL || strcmp(r->scheme, "lie") != 0))
-        return cli_usage(cmd, "-n is the order of --scheme lie with --dt; a member of the "
-                              "family names its order (--scheme lie6)");
     if (r->formats != NULL && r->plot == NULL)
         return cli_usage(cmd, "--format is for the figures of --plot DIR");
     if (r->plot != NULL && (r->orders != NULL || r->digits_s != NULL))
@@ -144,6 +150,16 @@ static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
     r->have_dt = r->dt_s != NULL;
     if (r->have_dt && (rc = parse_double(&r->dt, r->dt_s, "--dt", cmd)) >= 0)
         return rc;
+    if (!r->have_dt && r->orders == NULL && !adaptive(r))
+        return cli_usage(cmd, "missing --dt: a fixed-step scheme needs its step (or --orders "
+                              "D1,D2,... for several)");
+    if (o->have_order && (r->scheme == NULL || strcmp(r->scheme, "lie") != 0 || adaptive(r)))
+        return cli_usage(cmd, "--order is the order of the truncated Lie series: for "
+                              "--scheme lie with --dt (and without --tol); a member of the "
+                              "family lieN names its own (--scheme lie6)");
+    if (o->have_order && (o->order < 1 || o->order > HL_LIE_MAX_ORDER))
+        return cli_usage(cmd, "--order must be from 1 to %d, not %d", HL_LIE_MAX_ORDER,
+                         o->order);
     r->tol = 1e-15;
     if (r->tol_s != NULL && (rc = parse_double(&r->tol, r->tol_s, "--tol", cmd)) >= 0)
         return rc;
@@ -180,10 +196,6 @@ typedef struct csv {
     long rows;
     hl_runplot *plot; /* --plot: the rows kept for the figures, or NULL */
     double *plot_row; /* 1 + n2 + 1 + sigma + nobs values */
-    /* progress */
-    int progress;
-    long nsteps, last_k;
-    struct timespec last;
 } csv;
 
 static void csv_field(hl_buf *b, const char *s)
@@ -220,24 +232,11 @@ static void csv_num(hl_buf *b, double v)
     hl_buf_putn(b, s, (size_t)n + 1);
 }
 
-static double now(struct timespec *ts)
+static double now(void)
 {
-    clock_gettime(CLOCK_MONOTONIC, ts);
-    return (double)ts->tv_sec + 1e-9 * (double)ts->tv_nsec;
-}
-
-static void progress(csv *c, long k)
-{
-    if (!c->progress || k - c->last_k < 65536)
-        return;
-    c->last_k = k;
     struct timespec ts;
-    double t1 = now(&ts), t0 = (double)c->last.tv_sec + 1e-9 * (double)c->last.tv_nsec;
-    if (t1 - t0 < 0.5)
-        return;
-    c->last = ts;
-    fprintf(stderr, "\rhamlie run: step %ld of %ld (%.0f%%)", k, c->nsteps,
-            100.0 * (double)k / (double)(c->nsteps > 0 ? c->nsteps : 1));
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 /* A row for the figures, in the CSV's column order. */
@@ -260,7 +259,6 @@ static int plot_row(csv *c, const hl_run_row *row)
 static int csv_row(const hl_run_row *row, void *arg)
 {
     csv *c = arg;
-    progress(c, row->k);
     if (c->plot != NULL) {
         int st = plot_row(c, row);
         if (st != HL_OK)
@@ -350,76 +348,45 @@ static void plot_close(csv *c)
     c->plot_row = NULL;
 }
 
-/* ---- JSON (hand-written: report.h has no writer for doubles) ------------- */
+/* ---- JSON ------------------------------------------------------------------ */
 
-static void jnum(hl_buf *b, double v)
+static void json_head(hl_json *j, hl_buf *out, hl_system *sys, const run_opts *r,
+                      const cli_opts *o, int interrupted)
 {
-    if (isfinite(v))
-        hl_buf_printf(b, "%.17g", v);
-    else
-        hl_buf_puts(b, "null");
+    hl_json_init_buf(j, out);
+    hl_json_object_begin(j);
+    hl_json_kv_string(j, "command", "run");
+    cli_json_system(j, sys);
+    hl_json_kv_string(j, "H_input", o->H);
+    hl_json_kv_string(j, "scheme",
+                      r->scheme != NULL ? r->scheme : o->map != NULL ? "map" : "equations");
+    hl_json_kv_string(j, "integrator", adaptive(r) ? "adaptive-taylor" : "fixed-step");
+    hl_json_kv_double(j, "t", r->t);
+    hl_json_kv_bool(j, "interrupted", interrupted);
 }
 
-static void jkey(hl_buf *b, const char *k, int first)
-{
-    hl_buf_puts(b, first ? "\n  " : ",\n  ");
-    hl_json_escape(b, k);
-    hl_buf_puts(b, ": ");
-}
-
-static void jkv_num(hl_buf *b, const char *k, double v)
-{
-    jkey(b, k, 0);
-    jnum(b, v);
-}
-
-static void jkv_str(hl_buf *b, const char *k, const char *s)
-{
-    jkey(b, k, 0);
-    if (s == NULL)
-        hl_buf_puts(b, "null");
-    else
-        hl_json_escape(b, s);
-}
-
-static void json_head(hl_buf *b, hl_system *sys, const run_opts *r, const cli_opts *o)
+/* name -> value of each phase variable, q then p (values: doubles, or the
+ * strings of an Arb run) */
+static void json_state(hl_json *j, const char *key, hl_system *sys, const double *z,
+                       char *const *zs)
 {
     int N = hl_system_ndof(sys);
-    hl_buf_puts(b, "{");
-    jkey(b, "command", 1);
-    hl_json_escape(b, "run");
-    jkey(b, "symbols", 0);
-    hl_buf_puts(b, "{\"coordinates\": [");
-    for (int i = 0; i < N; i++) {
-        hl_buf_puts(b, i ? ", " : "");
-        hl_json_escape(b, hl_system_coord(sys, i));
-    }
-    hl_buf_puts(b, "], \"momenta\": [");
-    for (int i = 0; i < N; i++) {
-        hl_buf_puts(b, i ? ", " : "");
-        hl_json_escape(b, hl_system_momentum(sys, i));
-    }
-    hl_buf_puts(b, "], \"parameters\": [], \"step\": ");
-    hl_json_escape(b, hl_system_step(sys));
-    hl_buf_puts(b, "}");
-    jkv_str(b, "H_input", o->H);
-    jkv_str(b, "scheme", r->scheme != NULL ? r->scheme : o->map != NULL ? "map" : "equations");
-    jkv_str(b, "integrator", adaptive(r) ? "adaptive-taylor" : "fixed-step");
-    jkv_num(b, "t", r->t);
-}
-
-static void json_state(hl_buf *b, const char *key, hl_system *sys, const double *z)
-{
-    int N = hl_system_ndof(sys);
-    jkey(b, key, 0);
-    hl_buf_puts(b, "{");
+    hl_json_key(j, key);
+    hl_json_object_begin(j);
     for (int i = 0; i < 2 * N; i++) {
-        hl_buf_puts(b, i ? ", " : "");
-        hl_json_escape(b, i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N));
-        hl_buf_puts(b, ": ");
-        jnum(b, z[i]);
+        const char *name = i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N);
+        if (zs != NULL)
+            hl_json_kv_string(j, name, zs[i] != NULL ? zs[i] : "");
+        else
+            hl_json_kv_double(j, name, z[i]);
     }
-    hl_buf_puts(b, "}");
+    hl_json_object_end(j);
+}
+
+static void json_end(hl_json *j)
+{
+    hl_json_object_end(j);
+    hl_json_finish(j);
 }
 
 /* ---- the two modes ------------------------------------------------------ */
@@ -465,19 +432,10 @@ static int close_out(csv *c, const run_opts *r, const char *tmpname, int ok,
                 strerror(errno));
         rc = CLI_ERROR;
     } else if (!ok)
-        fprintf(stderr, "hamlie: note: the %ld rows written before the failure (to t = %.17g) "
-                        "are kept in '%s'\n", c->rows, s->t, dst);
+        fprintf(stderr, "hamlie: note: the %ld rows written (to t = %.17g) are kept in '%s'\n",
+                c->rows, s->t, dst);
     free(dst);
     return rc;
-}
-
-/* With nothing to consume the rows (--json alone) the runner need deliver
- * them only for the progress line: a row every ~0.1% of a long run, so
- * that long runs iterate in machine code between rows (run/drive.c). */
-static long sparse_every(long every, long n)
-{
-    long want = n / 1000 > 16 ? n / 1000 : 16;
-    return want <= every ? every : (want / every + 1) * every;
 }
 
 /* The rows --every would give for the steps done (run.h: row k is
@@ -485,6 +443,42 @@ static long sparse_every(long every, long n)
 static long rows_for(long steps, long every, long n)
 {
     return steps / every + 1 + (steps == n && n % every != 0);
+}
+
+/* Runs from this many steps say what they will do before they start
+ * (without --progress): they take a while at any rate. */
+#define PLAN_STEPS 100000000L
+
+/* The progress of a run on stderr (cli_progress), said first when the run
+ * is long or --progress asks. */
+static void start_progress(cli_progress *p, hl_run *run, const run_opts *r, const cli_opts *o,
+                           long n, double dt)
+{
+    int ad = adaptive(r);
+    cli_progress_begin(p, "run", ad ? "row" : "step", o->progress);
+    hl_run_set_progress(run, cli_progress_fn, p);
+    if (o->progress != CLI_PROGRESS_ON && n < PLAN_STEPS)
+        return;
+    const char *name = r->scheme != NULL ? r->scheme : o->map != NULL ? "the --map scheme"
+                                                                     : "the --equations scheme";
+    if (r->digits_s != NULL)
+        cli_progress_say(p, "%ld rows of the Taylor integrator in Arb at %g digits to t = %s",
+                         n + 1, r->digits, r->t_s);
+    else if (ad)
+        cli_progress_say(p, "%ld rows of the adaptive Taylor integrator (tol %g) to t = %g",
+                         n + 1, r->tol, r->t);
+    else
+        cli_progress_say(p, "%ld steps (%.3g) of %s at dt = %g to t = %g%s", n, (double)n, name,
+                         dt, r->t, r->no_ref ? "" : ", each against the reference");
+}
+
+/* The one line printed after a run written to --out. */
+static void put_summary(hl_buf *out, const hl_run_stats *s, const csv *c, const char *file)
+{
+    hl_buf_printf(out, "%ld steps to t = %.17g, max |H - H0| = %.3g", s->steps, s->t, s->max_dH);
+    if (c->sigma)
+        hl_buf_printf(out, ", final sigma = %.3g", s->sigma);
+    hl_buf_printf(out, "; wrote %ld rows to %s\n", c->rows, file);
 }
 
 static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts *o,
@@ -521,29 +515,27 @@ static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts
         plot_open(&c, sys, r, o);
     hl_run_set_reference(run, !r->no_ref, r->tol);
     hl_run_set_jit(run, 1);
-    c.progress = isatty(2);
-    c.nsteps = n;
-    struct timespec t0;
-    double w0 = now(&t0);
-    c.last = t0;
+    cli_progress p;
+    start_progress(&p, run, r, o, n, dt);
+    double w0 = now();
     hl_run_stats s;
     memset(&s, 0, sizeof s);
-    int consumed = want_csv || r->plot != NULL;
-    long every = consumed || ad ? r->every : sparse_every(r->every, n);
+    /* nothing consumes the rows of --json alone: the runner need not make them */
+    int consumed = want_csv || r->plot != NULL || ad;
     int st = ad ? hl_run_adaptive(run, z0, r->tol, dt, r->t, r->every, csv_row, &c, &s, &err)
-                : hl_run_fixed(run, z0, dt, r->t, every, csv_row, &c, &s, &err);
-    if (every != r->every)
+                : hl_run_fixed(run, z0, dt, r->t, r->every, consumed ? csv_row : NULL, &c, &s,
+                               &err);
+    if (!consumed)
         s.rows = rows_for(s.steps, r->every, n);
-    struct timespec t1;
-    double wall = now(&t1) - w0;
-    if (c.progress && n >= 65536 * 2)
-        fputs("\r\033[K", stderr);
+    double wall = now() - w0;
+    cli_progress_end(&p);
+    int stopped = st == HL_ESTOP, figures = 0;
     if (st == HL_EIO && c.io_error) {
         close_out(&c, r, tmpname, 0, &s);
         if (tmpname == NULL)
             fprintf(stderr, "hamlie: error: writing to standard output failed\n");
         rc = CLI_ERROR;
-    } else if (st != HL_OK) {
+    } else if (st != HL_OK && !stopped) {
         csv_flush(&c);
         cli_fail(&err);
         if (s.nsteps > 0 && (s.failed || s.steps > 0))
@@ -552,9 +544,13 @@ static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts
         if (want_csv)
             close_out(&c, r, tmpname, 0, &s);
         rc = CLI_ERROR;
+    } else if (stopped) {
+        fprintf(stderr, "hamlie run: interrupted after step %ld of %ld (t = %.17g)\n", s.steps,
+                s.nsteps, s.t);
+        rc = want_csv ? close_out(&c, r, tmpname, 0, &s) : CLI_OK;
     } else {
         /* the figures first: if they cannot be drawn, no CSV file is left */
-        int figures = c.plot != NULL ? plot_write(&c, r) : 0;
+        figures = c.plot != NULL ? plot_write(&c, r) : 0;
         if (figures < 0) {
             if (tmpname != NULL) {
                 fclose(c.fp);
@@ -565,42 +561,36 @@ static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts
             rc = want_csv ? close_out(&c, r, tmpname, 1, &s) : CLI_OK;
         if (rc == CLI_OK && c.plot != NULL && o->format != CLI_JSON)
             fprintf(stderr, "hamlie: drew %d figure files in %s\n", figures, r->plot);
-        if (rc == CLI_OK && (o->format == CLI_JSON || r->out != NULL)) {
-            hl_buf out;
-            hl_buf_init(&out);
-            if (o->format == CLI_JSON) {
-                json_head(&out, sys, r, o);
-                jkv_num(&out, "dt", dt);
-                jkey(&out, "steps", 0);
-                hl_buf_printf(&out, "%ld", s.steps);
-                jkey(&out, "rows", 0);
-                hl_buf_printf(&out, "%ld", s.rows);
-                jkv_num(&out, "final_t", s.t);
-                json_state(&out, "final_state", sys, hl_run_state(run));
-                jkv_num(&out, "H0", s.H0);
-                jkv_num(&out, "H_final", s.H);
-                jkv_num(&out, "max_abs_dH", s.max_dH);
-                jkv_num(&out, "sigma_final", s.sigma);
-                jkv_num(&out, "max_error", s.max_err);
-                jkv_num(&out, "tol", r->tol);
-                jkey(&out, "taylor_steps", 0);
-                hl_buf_printf(&out, "%ld", s.ref_steps);
-                jkv_str(&out, "out", r->out);
-                jkv_str(&out, "plot", r->plot);
-                jkey(&out, "figure_files", 0);
-                hl_buf_printf(&out, "%d", figures);
-                jkv_num(&out, "wall_time_s", wall);
-                hl_buf_puts(&out, "\n}\n");
-            } else {
-                hl_buf_printf(&out, "%ld steps to t = %.17g, max |H - H0| = %.3g", s.steps, s.t,
-                              s.max_dH);
-                if (c.sigma)
-                    hl_buf_printf(&out, ", final sigma = %.3g", s.sigma);
-                hl_buf_printf(&out, "; wrote %ld rows to %s\n", c.rows, r->out);
-            }
-            rc = cli_emit(&out, CLI_OK);
-        }
     }
+    if (rc == CLI_OK && (o->format == CLI_JSON || (r->out != NULL && !stopped))) {
+        hl_buf out;
+        hl_buf_init(&out);
+        if (o->format == CLI_JSON) {
+            hl_json j;
+            json_head(&j, &out, sys, r, o, stopped);
+            hl_json_kv_double(&j, "dt", dt);
+            hl_json_kv_int(&j, "steps", s.steps);
+            hl_json_kv_int(&j, "rows", s.rows);
+            hl_json_kv_double(&j, "final_t", s.t);
+            json_state(&j, "final_state", sys, hl_run_state(run), NULL);
+            hl_json_kv_double(&j, "H0", s.H0);
+            hl_json_kv_double(&j, "H_final", s.H);
+            hl_json_kv_double(&j, "max_abs_dH", s.max_dH);
+            hl_json_kv_double(&j, "sigma_final", s.sigma);
+            hl_json_kv_double(&j, "max_error", s.max_err);
+            hl_json_kv_double(&j, "tol", r->tol);
+            hl_json_kv_int(&j, "taylor_steps", s.ref_steps);
+            hl_json_kv_string(&j, "out", r->out);
+            hl_json_kv_string(&j, "plot", r->plot);
+            hl_json_kv_int(&j, "figure_files", figures);
+            hl_json_kv_double(&j, "wall_time_s", wall);
+            json_end(&j);
+        } else
+            put_summary(&out, &s, &c, r->out);
+        rc = cli_emit(&out, CLI_OK);
+    }
+    if (rc == CLI_OK && stopped)
+        rc = CLI_INTERRUPTED;
     free(tmpname);
     plot_close(&c);
     hl_buf_clear(&c.buf);
@@ -641,31 +631,43 @@ static int do_orders(hl_run *run, hl_system *sys, const run_opts *r, const cli_o
     hl_error err;
     hl_error_clear(&err);
     hl_run_set_reference(run, 1, r->tol);
+    for (int i = 0; i < n; i++)
+        e[i] = NAN;
+    cli_progress p;
+    cli_progress_begin(&p, "run", "step", o->progress);
+    hl_run_set_progress(run, cli_progress_fn, &p);
     int st = hl_run_orders(e, ef, ord, run, z0, dts, n, r->t, &err);
-    if (st != HL_OK)
+    cli_progress_end(&p);
+    int stopped = st == HL_ESTOP, all = n;
+    if (stopped) { /* the steps done before the interrupt */
+        for (n = 0; n < all && !isnan(e[n]);)
+            n++;
+        fprintf(stderr, "hamlie run: interrupted (%s); the orders of the %d steps done follow\n",
+                err.msg, n);
+    }
+    if (st != HL_OK && !stopped)
         rc = cli_fail(&err);
     else {
         hl_buf out;
         hl_buf_init(&out);
         if (o->format == CLI_JSON) {
-            json_head(&out, sys, r, o);
-            jkv_str(&out, "error_measure", "max over steps of |z_n - z(t_n)|_2");
-            jkey(&out, "orders", 0);
-            hl_buf_puts(&out, "[");
+            hl_json j;
+            json_head(&j, &out, sys, r, o, stopped);
+            hl_json_kv_string(&j, "error_measure", "max over steps of |z_n - z(t_n)|_2");
+            hl_json_key(&j, "orders");
+            hl_json_array_begin(&j);
             for (int i = 0; i < n; i++) {
-                hl_buf_puts(&out, i ? ",\n    {\"dt\": " : "\n    {\"dt\": ");
-                jnum(&out, dts[i]);
-                hl_buf_puts(&out, ", \"max_error\": ");
-                jnum(&out, e[i]);
-                hl_buf_puts(&out, ", \"final_error\": ");
-                jnum(&out, ef[i]);
-                hl_buf_puts(&out, ", \"order\": ");
-                jnum(&out, ord[i]);
-                hl_buf_puts(&out, ", \"order_final\": ");
-                jnum(&out, i ? log(ef[i - 1] / ef[i]) / log(dts[i - 1] / dts[i]) : NAN);
-                hl_buf_puts(&out, "}");
+                hl_json_object_begin(&j);
+                hl_json_kv_double(&j, "dt", dts[i]);
+                hl_json_kv_double(&j, "max_error", e[i]);
+                hl_json_kv_double(&j, "final_error", ef[i]);
+                hl_json_kv_double(&j, "order", ord[i]);
+                hl_json_kv_double(&j, "order_final",
+                                  i ? log(ef[i - 1] / ef[i]) / log(dts[i - 1] / dts[i]) : NAN);
+                hl_json_object_end(&j);
             }
-            hl_buf_puts(&out, "\n  ]\n}\n");
+            hl_json_array_end(&j);
+            json_end(&j);
         } else {
             hl_buf_printf(&out, "observed global order to t = %g (error: max over steps of "
                                 "|z_n - z(t_n)|; final: at t)\n", r->t);
@@ -680,10 +682,22 @@ static int do_orders(hl_run *run, hl_system *sys, const run_opts *r, const cli_o
                                   log(ef[i - 1] / ef[i]) / log(dts[i - 1] / dts[i]));
             }
         }
-        rc = cli_emit(&out, CLI_OK);
+        rc = cli_emit(&out, stopped ? CLI_INTERRUPTED : CLI_OK);
     }
     free(dts), free(e), free(ef), free(ord);
     return rc;
+}
+
+/* An error in --init, shown with the --init text (under the value at
+ * fault when the error has a position). */
+static int init_fail(hl_error *err, const char *init)
+{
+    if (err->src == NULL) {
+        err->src = init;
+        err->pos = -1;
+    }
+    hl_error_prefix(err, "in --init");
+    return cli_fail(err);
 }
 
 /* ---- --digits: the adaptive run in Arb ------------------------------------- */
@@ -697,7 +711,6 @@ static int csv_row_arb(const hl_run_row_arb *row, void *arg)
 {
     csv_arb *ca = arg;
     csv *c = &ca->c;
-    progress(c, row->k);
     if (c->fp == NULL)
         return 0;
     hl_buf *b = &c->buf;
@@ -755,28 +768,30 @@ static int do_run_arb(hl_run *run, hl_system *sys, const run_opts *r, const cli_
     arb_ptr z0 = _arb_vec_init(l.n2);
     char *tmpname = NULL;
     int want_csv = r->out != NULL || o->format != CLI_JSON;
-    if (hl_run_nsteps(&n, dt, r->t, &err) != HL_OK ||
-        hl_run_init_values_arb(z0, sys, r->init, prec, &err) != HL_OK) {
+    if (hl_run_nsteps(&n, dt, r->t, &err) != HL_OK) {
         rc = cli_fail(&err);
+        goto done;
+    }
+    if (hl_run_init_values_arb(z0, sys, r->init, prec, &err) != HL_OK ||
+        hl_run_check_start_arb(run, z0, prec, &err) != HL_OK) {
+        rc = init_fail(&err, r->init);
         goto done;
     }
     if (want_csv && (rc = open_out(c, r, &tmpname)) != CLI_OK)
         goto done;
     if (want_csv)
         csv_header(c, sys, r);
-    c->progress = isatty(2);
-    c->nsteps = n;
-    struct timespec t0;
-    double w0 = now(&t0);
-    c->last = t0;
+    cli_progress p;
+    start_progress(&p, run, r, o, n, dt);
+    double w0 = now();
     hl_run_stats s;
     memset(&s, 0, sizeof s);
     int st = hl_run_adaptive_arb(run, z0, r->digits, r->t_s, n, r->every, row_arb_keep, &l, &s,
                                  &err);
-    double wall = now(&t0) - w0;
-    if (c->progress && n >= 65536 * 2)
-        fputs("\r\033[K", stderr);
-    if (st != HL_OK) {
+    double wall = now() - w0;
+    cli_progress_end(&p);
+    int stopped = st == HL_ESTOP;
+    if (st != HL_OK && !stopped) {
         csv_flush(c);
         if (!(st == HL_EIO && c->io_error))
             cli_fail(&err);
@@ -785,36 +800,38 @@ static int do_run_arb(hl_run *run, hl_system *sys, const run_opts *r, const cli_
         rc = CLI_ERROR;
         goto done;
     }
-    rc = want_csv ? close_out(c, r, tmpname, 1, &s) : CLI_OK;
+    if (stopped)
+        fprintf(stderr, "hamlie run: interrupted after row %ld of %ld (t = %.17g)\n", s.steps,
+                n, s.t);
+    rc = want_csv ? close_out(c, r, tmpname, !stopped, &s) : CLI_OK;
+    if (rc == CLI_OK && o->format != CLI_JSON && r->out != NULL && !stopped) {
+        hl_buf out;
+        hl_buf_init(&out);
+        put_summary(&out, &s, c, r->out);
+        rc = cli_emit(&out, CLI_OK);
+    }
     if (rc == CLI_OK && o->format == CLI_JSON) {
         hl_buf out;
         hl_buf_init(&out);
-        json_head(&out, sys, r, o);
-        jkv_num(&out, "digits", r->digits);
-        jkey(&out, "outputs", 0);
-        hl_buf_printf(&out, "%ld", s.steps);
-        jkey(&out, "rows", 0);
-        hl_buf_printf(&out, "%ld", s.rows);
-        jkv_str(&out, "final_t", r->t_s);
-        jkey(&out, "final_state", 0);
-        hl_buf_puts(&out, "{");
-        for (int i = 0; i < l.n2; i++) {
-            int N = l.n2 / 2;
-            hl_buf_puts(&out, i ? ", " : "");
-            hl_json_escape(&out, i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N));
-            hl_buf_puts(&out, ": ");
-            hl_json_escape(&out, l.z[i] != NULL ? l.z[i] : "");
-        }
-        hl_buf_puts(&out, "}");
-        jkv_num(&out, "H0", s.H0);
-        jkv_num(&out, "max_abs_dH", s.max_dH);
-        jkey(&out, "taylor_steps", 0);
-        hl_buf_printf(&out, "%ld", s.ref_steps);
-        jkv_str(&out, "out", r->out);
-        jkv_num(&out, "wall_time_s", wall);
-        hl_buf_puts(&out, "\n}\n");
+        hl_json j;
+        json_head(&j, &out, sys, r, o, stopped);
+        hl_json_kv_double(&j, "digits", r->digits);
+        hl_json_kv_int(&j, "outputs", s.steps);
+        hl_json_kv_int(&j, "rows", s.rows);
+        char ts[40]; /* interrupted: the time of the last row, not --t */
+        hl_run_fmt_short(ts, s.t);
+        hl_json_kv_string(&j, "final_t", stopped ? ts : r->t_s);
+        json_state(&j, "final_state", sys, NULL, l.z);
+        hl_json_kv_double(&j, "H0", s.H0);
+        hl_json_kv_double(&j, "max_abs_dH", s.max_dH);
+        hl_json_kv_int(&j, "taylor_steps", s.ref_steps);
+        hl_json_kv_string(&j, "out", r->out);
+        hl_json_kv_double(&j, "wall_time_s", wall);
+        json_end(&j);
         rc = cli_emit(&out, CLI_OK);
     }
+    if (rc == CLI_OK && stopped)
+        rc = CLI_INTERRUPTED;
 done:
     for (int i = 0; i < l.n2; i++)
         flint_free(l.z[i]);
@@ -871,10 +888,11 @@ int cmd_run(int argc, char **argv)
     static const cli_own own[] = {
         {"--scheme", 0}, {"--equations", 0}, {"--init", 0},  {"--out", 0},
         {"--orders", 0}, {"--dt", 0},        {"--t", 0},     {"--tol", 0},
-        {"--every", 0},  {"--digits", 0},    {"--observe", 0}, {"--no-reference", 1},
+        {"--every", 0},  {"--digits", 0},    {"--observe", CLI_OWN_REPEAT}, {"--no-reference", 1},
         {"--plot", 0},   {"--format", 0}};
     static const cli_begin_spec spec = {own, (int)(sizeof own / sizeof own[0]), found_opt,
-                                        check_opts, CLI_OPT_H | CLI_OPT_MAP | CLI_OPT_ORDER, 64};
+                                        check_opts, CLI_OPT_H | CLI_OPT_MAP | CLI_OPT_ORDER | CLI_OPT_PROGRESS,
+                                        64};
     char **av;
     hl_system *sys;
     int rc = cli_begin(&av, &o, &sys, argc, argv, cmd, &spec, &r);
@@ -883,13 +901,14 @@ int cmd_run(int argc, char **argv)
     hl_error err;
     hl_error_clear(&err);
     double z0[2 * 64];
-    if (rc < 0 && hl_run_init_values(z0, sys, r.init, &err) != HL_OK) {
-        hl_error_prefix(&err, "in --init");
-        rc = cli_fail(&err);
-    }
+    if (rc < 0 && r.digits_s == NULL && hl_run_init_values(z0, sys, r.init, &err) != HL_OK)
+        rc = init_fail(&err, r.init);
     hl_exact_flow *ex = NULL;
     if (rc < 0 && build(&run, &sch, &ex, sys, &r, &o, &err) != HL_OK)
         rc = cli_fail(&err);
+    /* before any output: a point outside H's domain is not a blow-up */
+    if (rc < 0 && r.digits_s == NULL && hl_run_check_start(run, z0, &err) != HL_OK)
+        rc = init_fail(&err, r.init);
     if (rc < 0)
         rc = r.orders != NULL    ? do_orders(run, sys, &r, &o, z0, cmd)
              : r.digits_s != NULL ? do_run_arb(run, sys, &r, &o)

@@ -9,6 +9,10 @@
 
 int cli_fail(const hl_error *err)
 {
+    if (err->status == HL_ESTOP) { /* by the progress callback: an interrupt */
+        fprintf(stderr, "hamlie: interrupted: %s\n", err->msg);
+        return CLI_INTERRUPTED;
+    }
     fprintf(stderr, "hamlie: error: %s\n", err->msg[0] ? err->msg : hl_status_string(err->status));
     if (err->src == NULL)
         return CLI_ERROR;
@@ -162,7 +166,7 @@ static int own_index(const char *a, const cli_own *own, int n, const char **inli
         size_t l = strlen(own[k].name);
         if (strncmp(a, own[k].name, l) != 0)
             continue;
-        if (a[l] == '\0' || (a[l] == '=' && !own[k].flag)) {
+        if (a[l] == '\0' || (a[l] == '=' && own[k].kind != CLI_OWN_FLAG)) {
             *inline_value = a[l] == '=' ? a + l + 1 : NULL;
             return k;
         }
@@ -174,8 +178,9 @@ int cli_take_own(int *argc, char **argv, const cli_own *own, int n,
                  void (*found)(void *arg, int k, const char *value), void *arg,
                  const cli_command *cmd)
 {
-    int kept = 0;
-    for (int i = 0; i < *argc; i++) {
+    const char **given = hl_xcalloc((size_t)(n > 0 ? n : 1), sizeof *given);
+    int kept = 0, rc = -1;
+    for (int i = 0; i < *argc && rc < 0; i++) {
         const char *a = argv[i], *val = NULL;
         if (i > 0 && strcmp(a, "--") == 0) {
             while (i < *argc)
@@ -187,13 +192,21 @@ int cli_take_own(int *argc, char **argv, const cli_own *own, int n,
             argv[kept++] = argv[i];
             continue;
         }
-        if (!own[k].flag && val == NULL) {
-            if (i + 1 >= *argc)
-                return cli_usage(cmd, "option '%s' needs a value", a);
+        if (own[k].kind != CLI_OWN_FLAG && val == NULL) {
+            if (i + 1 >= *argc) {
+                rc = cli_usage(cmd, "option '%s' needs a value", a);
+                break;
+            }
             val = argv[++i];
         }
+        if (own[k].kind == CLI_OWN_VALUE &&
+            (rc = cli_once(&given[k], val, own[k].name, cmd)) >= 0)
+            break;
         found(arg, k, val);
     }
+    free(given);
+    if (rc >= 0)
+        return rc;
     argv[kept] = NULL;
     *argc = kept;
     return -1;

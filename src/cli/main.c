@@ -80,10 +80,14 @@ static const cli_command commands[] = {
      "  -H, --hamiltonian F  the Hamiltonian (required)\n"
      "  -n, --order N        the order in D (0..200; default 4)\n"
      "  --of F               the function phi (repeatable)\n"
-     "  --terms              also print the terms g^k phi themselves\n" COMMON_OPTIONS
+     "  --terms              also print the terms g^k phi themselves\n"
+     "  --progress, --quiet  progress on stderr from the start, or none (default:\n"
+     "                       after a second or two)\n" COMMON_OPTIONS
      "\n"
      "A series whose terms grow past 2000000 terms is stopped with a message.\n"
-     "Exit status: 0 computed; 2 usage or input error (an order above the limit).\n"
+     "Ctrl-C (SIGINT) stops it; nothing is printed.\n"
+     "Exit status: 0 computed; 2 usage or input error (an order above the limit);\n"
+     "130 interrupted.\n"
      "Example: hamlie lie -H 'p^2/2 - cos(q)' --order 6\n"},
     {"run", cmd_run, "run a scheme: a trajectory (CSV), its errors, observed orders", cmd_run_help},
     {"schemes", cmd_schemes, "the catalog of one-step schemes", cmd_schemes_help},

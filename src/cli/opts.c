@@ -10,7 +10,8 @@
 #include "cli/cli.h"
 
 enum {
-    O_PAIRS = 256, O_STEP, O_PARAM, O_JSON, O_LATEX, O_INTEGRAL, O_MAP, O_OF, O_TERMS
+    O_PAIRS = 256, O_STEP, O_PARAM, O_JSON, O_LATEX, O_INTEGRAL, O_MAP, O_OF, O_TERMS,
+    O_PROGRESS, O_QUIET
 };
 
 int cli_usage(const cli_command *cmd, const char *fmt, ...)
@@ -55,6 +56,15 @@ static int parse_order(cli_opts *o, const char *s, const cli_command *cmd)
 
 static int parse_opts(cli_opts *o, int argc, char **argv, unsigned accept,
                       const cli_command *cmd);
+
+int cli_once(const char **slot, const char *value, const char *opt, const cli_command *cmd)
+{
+    if (*slot != NULL && strcmp(*slot, value) != 0)
+        return cli_usage(cmd, "%s given twice ('%s', then '%s'): give it once", opt, *slot,
+                         value);
+    *slot = value;
+    return -1;
+}
 
 static int takes(unsigned accept, unsigned bit, const char *opt, const cli_command *cmd)
 {
@@ -145,9 +155,12 @@ static int parse_opts(cli_opts *o, int argc, char **argv, unsigned accept,
         {"order", required_argument, NULL, 'n'},
         {"of", required_argument, NULL, O_OF},
         {"terms", no_argument, NULL, O_TERMS},
+        {"progress", no_argument, NULL, O_PROGRESS},
+        {"quiet", no_argument, NULL, O_QUIET},
         {NULL, 0, NULL, 0},
     };
     hl_buf params;
+    const char *order_text = NULL;
     int c, rc = -1;
 
     memset(o, 0, sizeof *o);
@@ -158,15 +171,13 @@ static int parse_opts(cli_opts *o, int argc, char **argv, unsigned accept,
         switch (c) {
         case 'H':
             if ((rc = takes(accept, CLI_OPT_H, "-H", cmd)) < 0)
-                o->H = optarg;
+                rc = cli_once(&o->H, optarg, "-H", cmd);
             break;
         case O_PAIRS:
-            o->pairs = optarg;
+            rc = cli_once(&o->pairs, optarg, "--pairs", cmd);
             break;
         case O_STEP:
-            if (o->step != NULL)
-                rc = cli_usage(cmd, "--step given twice");
-            o->step = optarg;
+            rc = cli_once(&o->step, optarg, "--step", cmd);
             break;
         case O_PARAM:
             hl_buf_printf(&params, "%s%s", params.len ? "," : "", optarg);
@@ -189,10 +200,11 @@ static int parse_opts(cli_opts *o, int argc, char **argv, unsigned accept,
             break;
         case O_MAP:
             if ((rc = takes(accept, CLI_OPT_MAP, "--map", cmd)) < 0)
-                o->map = optarg;
+                rc = cli_once(&o->map, optarg, "--map", cmd);
             break;
         case 'n':
-            if ((rc = takes(accept, CLI_OPT_ORDER, "--order", cmd)) < 0)
+            if ((rc = takes(accept, CLI_OPT_ORDER, "--order", cmd)) < 0 &&
+                (rc = cli_once(&order_text, optarg, "--order", cmd)) < 0)
                 rc = parse_order(o, optarg, cmd);
             break;
         case O_OF:
@@ -203,6 +215,15 @@ static int parse_opts(cli_opts *o, int argc, char **argv, unsigned accept,
             if ((rc = takes(accept, CLI_OPT_TERMS, "--terms", cmd)) < 0)
                 o->terms = 1;
             break;
+        case O_PROGRESS:
+        case O_QUIET: {
+            int m = c == O_PROGRESS ? CLI_PROGRESS_ON : CLI_PROGRESS_OFF;
+            if ((rc = takes(accept, CLI_OPT_PROGRESS, argv[optind - 1], cmd)) < 0 &&
+                o->progress != CLI_PROGRESS_AUTO && o->progress != m)
+                rc = cli_usage(cmd, "--progress and --quiet cannot be used together");
+            o->progress = m;
+            break;
+        }
         case ':':
             rc = cli_usage(cmd, "option '%s' needs a value", argv[optind - 1]);
             break;

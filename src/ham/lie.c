@@ -54,6 +54,12 @@ static int refuse_growth(int order, int k, long total, long len_prev, long len_k
 
 int hl_lie_terms(hl_alg *terms, const hl_alg *phi, int order, hl_system *sys, hl_error *err)
 {
+    return hl_lie_terms_watched(terms, phi, order, sys, NULL, NULL, err);
+}
+
+int hl_lie_terms_watched(hl_alg *terms, const hl_alg *phi, int order, hl_system *sys,
+                         hl_progress_fn progress, void *arg, hl_error *err)
+{
     int st = check_order(order, err);
     if (st != HL_OK)
         return st;
@@ -68,6 +74,9 @@ int hl_lie_terms(hl_alg *terms, const hl_alg *phi, int order, hl_system *sys, hl
             (k >= 6 && projected_total(len_prev, len, k, order) > 2.0 * HL_LIE_MAX_TERMS))
             return refuse_growth(order, k, total, len_prev, len, err);
         len_prev = len;
+        if (progress != NULL && progress(k, order, arg) != 0)
+            return hl_error_set(err, HL_ESTOP, NULL, -1, 0, "stopped at order %d of %d", k,
+                                order);
     }
     return HL_OK;
 }

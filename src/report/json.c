@@ -1,5 +1,6 @@
 /* A small JSON writer: the caller says begin/end/key/value, the writer puts
  * the commas, the indentation and the escapes. */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -156,6 +157,15 @@ void hl_json_int(hl_json *j, long v)
     emits(j, s);
 }
 
+void hl_json_double(hl_json *j, double v)
+{
+    char s[32];
+    before_value(j);
+    if (isfinite(v))
+        snprintf(s, sizeof s, "%.17g", v);
+    emits(j, isfinite(v) ? s : "null");
+}
+
 void hl_json_bool(hl_json *j, int v)
 {
     before_value(j);
@@ -178,6 +188,12 @@ void hl_json_kv_int(hl_json *j, const char *key, long v)
 {
     hl_json_key(j, key);
     hl_json_int(j, v);
+}
+
+void hl_json_kv_double(hl_json *j, const char *key, double v)
+{
+    hl_json_key(j, key);
+    hl_json_double(j, v);
 }
 
 void hl_json_kv_bool(hl_json *j, const char *key, int v)

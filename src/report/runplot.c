@@ -19,6 +19,8 @@
 #include <strings.h>
 #include <sys/stat.h>
 
+#include <arb.h>
+
 #include "base/buf.h"
 #include "hamlie/plot.h"
 #include "hamlie/runplot.h"
@@ -32,7 +34,20 @@ struct hl_runplot {
     char **names;
     double *v; /* rows x ncols, row-major */
     size_t nrows, cap;
+    int iH;     /* the H column, -1 if none */
+    double *dH; /* |H - H0| per row: from the CSV's text in Arb when it has more
+                   digits than a double (a --digits run), else in double */
+    double max_dH;
 };
+
+/* The first column named "H" after "t", or -1. */
+static int h_column(const hl_runplot *rp)
+{
+    for (int j = 1; j < rp->ncols; j++)
+        if (strcmp(rp->names[j], "H") == 0)
+            return j;
+    return -1;
+}
 
 hl_runplot *hl_runplot_new(const char *label, int ncols, const char *const *names)
 {
@@ -42,6 +57,7 @@ hl_runplot *hl_runplot_new(const char *label, int ncols, const char *const *name
     rp->names = hl_xcalloc((size_t)rp->ncols + 1, sizeof *rp->names);
     for (int i = 0; i < rp->ncols; i++)
         rp->names[i] = hl_xstrdup(names != NULL && names[i] != NULL ? names[i] : "");
+    rp->iH = h_column(rp);
     return rp;
 }
 
@@ -54,6 +70,7 @@ void hl_runplot_free(hl_runplot *rp)
     free(rp->names);
     free(rp->label);
     free(rp->v);
+    free(rp->dH);
     free(rp);
 }
 
@@ -61,17 +78,34 @@ size_t hl_runplot_nrows(const hl_runplot *rp) { return rp != NULL ? rp->nrows : 
 
 const char *hl_runplot_label(const hl_runplot *rp) { return rp != NULL ? rp->label : NULL; }
 
-hl_status hl_runplot_add_row(hl_runplot *rp, const double *values, hl_error *err)
+double hl_runplot_max_dH(const hl_runplot *rp)
+{
+    return rp != NULL && rp->iH >= 0 && rp->nrows > 0 ? rp->max_dH : NAN;
+}
+
+/* A row, with its |H - H0| (NAN: from the values, in double). */
+static hl_status add_row(hl_runplot *rp, const double *values, double dH, hl_error *err)
 {
     if (rp == NULL || values == NULL || rp->ncols == 0)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "a run plot row needs its values");
     if (rp->nrows == rp->cap) {
         rp->cap = rp->cap ? 2 * rp->cap : 256;
         rp->v = hl_xrealloc(rp->v, rp->cap * (size_t)rp->ncols * sizeof *rp->v);
+        rp->dH = hl_xrealloc(rp->dH, rp->cap * sizeof *rp->dH);
     }
     memcpy(rp->v + rp->nrows * (size_t)rp->ncols, values, (size_t)rp->ncols * sizeof *values);
+    if (rp->iH >= 0 && isnan(dH))
+        dH = fabs(values[rp->iH] - rp->v[rp->iH]); /* row 0's H */
+    rp->dH[rp->nrows] = dH;
+    if (rp->nrows == 0 || dH > rp->max_dH)
+        rp->max_dH = dH;
     rp->nrows++;
     return HL_OK;
+}
+
+hl_status hl_runplot_add_row(hl_runplot *rp, const double *values, hl_error *err)
+{
+    return add_row(rp, values, NAN, err);
 }
 
 /* ---- the CSV reader ----------------------------------------------------- */
@@ -261,6 +295,54 @@ static hl_status read_row(double *values, const char *line, int ncols, char *con
     return HL_OK;
 }
 
+/* More significant digits than a double's 17 ("%.17g" is at most 24
+ * characters): the text of a --digits run, read in Arb. */
+#define RP_DOUBLE_TEXT 24
+
+static char *copy_n(const char *s, size_t n)
+{
+    char *c = hl_xmalloc(n + 1);
+    memcpy(c, s, n);
+    c[n] = '\0';
+    return c;
+}
+
+/* Field j of an unquoted line (a number field of hamlie run's CSV), its
+ * length in *n. */
+static const char *field_at(const char *line, int j, size_t *n)
+{
+    for (; j > 0 && line != NULL; j--) {
+        line = strchr(line, ',');
+        line = line != NULL ? line + 1 : NULL;
+    }
+    if (line == NULL)
+        return NULL;
+    *n = strcspn(line, ",");
+    return line;
+}
+
+/* |H - H0| from the texts of H and H0 when one has more digits than a
+ * double holds (a difference of 1e-30 in H = 0.5 would be 0 in doubles);
+ * NAN when both are doubles' texts or Arb cannot read them. */
+static double dH_text(const char *h, size_t nh, const char *h0, size_t nh0)
+{
+    if (h == NULL || h0 == NULL || (nh <= RP_DOUBLE_TEXT && nh0 <= RP_DOUBLE_TEXT))
+        return NAN;
+    char *a = copy_n(h, nh), *b = copy_n(h0, nh0);
+    slong prec = 4 * (slong)(nh > nh0 ? nh : nh0) + 64; /* > log2(10) bits a digit */
+    arb_t x, y;
+    arb_init(x), arb_init(y);
+    double d = NAN;
+    if (arb_set_str(x, a, prec) == 0 && arb_set_str(y, b, prec) == 0) {
+        arb_sub(x, x, y, prec);
+        arb_abs(x, x);
+        d = arf_get_d(arb_midref(x), ARF_RND_NEAR);
+    }
+    arb_clear(x), arb_clear(y);
+    free(a), free(b);
+    return d;
+}
+
 static const char *base_name(const char *path)
 {
     const char *s = strrchr(path, '/');
@@ -298,13 +380,20 @@ hl_status hl_runplot_read_csv(hl_runplot **out, const char *path, const char *la
         rp = hl_runplot_new(label != NULL ? label : lab, ncols, (const char *const *)names);
         free(lab);
         double *values = hl_xmalloc((size_t)ncols * sizeof *values);
+        char *H0 = NULL; /* the first row's H, as written */
+        size_t nH0 = 0;
         for (long lineno = 2; st == HL_OK && read_line(&line, &cap, fp, &io_error); lineno++) {
             if (trim(line)[0] == '\0')
                 continue; /* blank lines (a final newline) */
             st = read_row(values, line, ncols, names, path, lineno, err);
+            size_t nH = 0;
+            const char *h = rp->iH >= 0 ? field_at(line, rp->iH, &nH) : NULL;
+            if (st == HL_OK && h != NULL && H0 == NULL)
+                H0 = copy_n(h, nH), nH0 = nH;
             if (st == HL_OK)
-                st = hl_runplot_add_row(rp, values, err);
+                st = add_row(rp, values, dH_text(h, nH, H0, nH0), err);
         }
+        free(H0);
         free(values);
         if (st == HL_OK && io_error)
             st = hl_error_set(err, HL_EIO, NULL, -1, 0, "reading '%s' failed", path);
@@ -336,12 +425,8 @@ typedef struct roles {
 
 static hl_status find_roles(roles *r, const hl_runplot *rp, hl_error *err)
 {
-    r->iH = r->isigma = -1;
-    for (int j = 1; j < rp->ncols; j++)
-        if (strcmp(rp->names[j], "H") == 0) {
-            r->iH = j;
-            break;
-        }
+    r->isigma = -1;
+    r->iH = rp->iH;
     if (rp->ncols < 1 || strcmp(rp->names[0], "t") != 0)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
                             "run '%s': the first column must be 't'", rp->label);
@@ -425,11 +510,9 @@ static hl_status add_runs(hl_figure *f, hl_runplot *const *runs, int nruns, fig_
         const hl_runplot *rp = runs[r];
         size_t n = rp->nrows, nc = (size_t)rp->ncols;
         double *x = hl_xmalloc((n + 1) * sizeof *x), *y = hl_xmalloc((n + 1) * sizeof *y);
-        double H0 = n > 0 ? rp->v[sp.iy] : NAN;
         for (size_t i = 0; i < n; i++) {
             x[i] = rp->v[i * nc + (size_t)sp.ix];
-            double v = rp->v[i * nc + (size_t)sp.iy];
-            y[i] = sp.kind == Y_DH ? fabs(v - H0) : v;
+            y[i] = sp.kind == Y_DH ? rp->dH[i] : rp->v[i * nc + (size_t)sp.iy];
             if (y[i] > 0 && isfinite(y[i]))
                 *any_pos = 1;
         }
@@ -559,11 +642,9 @@ static hl_legend_pos legend_corner(hl_runplot *const *runs, int nruns, fig_spec 
         for (int r = 0; r < nruns; r++) {
             const hl_runplot *rp = runs[r];
             size_t nc = (size_t)rp->ncols;
-            double H0 = rp->v[sp.iy];
             for (size_t i = 0; i < rp->nrows; i++) {
-                double x = rp->v[i * nc + (size_t)sp.ix], y = rp->v[i * nc + (size_t)sp.iy];
-                if (sp.kind == Y_DH)
-                    y = fabs(y - H0);
+                double x = rp->v[i * nc + (size_t)sp.ix];
+                double y = sp.kind == Y_DH ? rp->dH[i] : rp->v[i * nc + (size_t)sp.iy];
                 if (ylog)
                     y = y > 0 ? log10(y) : NAN;
                 if (!isfinite(x) || !isfinite(y) ||

@@ -20,6 +20,7 @@ typedef struct drive_arb {
     arb_t H0, d;
     hl_error *err;
     int st, user;
+    double progress_next;
 } drive_arb;
 
 static int row_arb(drive_arb *d, long k, const arb_t t, arb_srcptr z)
@@ -43,14 +44,16 @@ static int row_arb(drive_arb *d, long k, const arb_t t, arb_srcptr z)
     s->t = arf_get_d(arb_midref(t), ARF_RND_NEAR);
     for (int i = 0; i < 2 * r->N; i++)
         r->z[i] = arf_get_d(arb_midref(z + i), ARF_RND_NEAR);
-    if (d->fn == NULL || !(k % d->every == 0 || k == d->n))
-        return HL_OK;
-    hl_run_row_arb rw = {k, t, z, d->vals, d->vals + 1};
-    s->rows++;
-    int u = d->fn(&rw, d->arg);
-    if (u != 0)
-        d->user = u;
-    return u;
+    if (d->fn != NULL && (k % d->every == 0 || k == d->n)) {
+        hl_run_row_arb rw = {k, t, z, d->vals, d->vals + 1};
+        s->rows++;
+        int u = d->fn(&rw, d->arg);
+        if (u != 0) {
+            d->user = u;
+            return u;
+        }
+    }
+    return hl_run_progress_(r, &d->progress_next, 1, (double)k, d->n, s->t, d->err);
 }
 
 static int arb_fn(const arb_t t, arb_srcptr z, void *arg)
@@ -81,12 +84,13 @@ int hl_run_adaptive_arb(hl_run *r, arb_srcptr z0, double digits, const char *T, 
     if (n < 0 || n > 10000000)
         return hl_error_set(err, n < 0 ? HL_EINVAL : HL_ELIMIT, NULL, -1, 0,
                             "%ld outputs: between 0 and 1e7 in Arb", n);
-    int st = hl_run_compile_(r, err);
+    int st = hl_run_check_start_arb(r, z0, hl_run_arb_prec(digits), err);
     if (st != HL_OK)
         return st;
     drive_arb d;
     memset(&d, 0, sizeof d);
     d.r = r, d.n = n, d.every = every > 0 ? every : 1, d.fn = fn, d.arg = arg, d.s = s;
+    d.progress_next = 1;
     d.err = err;
     d.prec = hl_run_arb_prec(digits);
     arb_t Tend, t0;

@@ -25,7 +25,21 @@ typedef struct drive {
     hl_error *err;
     int st;                  /* status of a failure inside the callback */
     int user;                /* the callback's own non-zero return */
+    double progress_next;    /* the step at which progress is reported next */
+    double progress_spacing;
+    double probe_t;          /* adaptive: a time between two rows (or NAN), */
+    double *probe_z;         /* where the state goes for the next call */
 } drive;
+
+/* Steps between two calls of the progress callback in a fixed-step run
+ * (a call costs about as much as a step; a step at least 10 ns), and the
+ * longest stretch of the compiled loop between two. */
+#define PROGRESS_STEPS 1024
+#define PROGRESS_FUSED_STEPS 65536
+/* The adaptive run with a progress callback: Taylor steps between two
+ * calls, and the first span of time tried, in rows. */
+#define PROBE_STEPS 1024
+#define PROBE_FIRST_SPAN 0x1p-40 /* rows may be 1e9 apart: start small, double */
 
 static void stats_start(hl_run_stats *s, long n)
 {
@@ -61,16 +75,17 @@ static int row(drive *d, long k, const double *ref)
     s->sigma = sigma;
     s->steps = k;
     s->t = t;
-    if (d->fn == NULL || !(k % d->every == 0 || k == d->n))
-        return HL_OK;
-    hl_run_row rw = {k, t, r->z, r->vals[0], r->vals + 1, sigma, ref};
-    s->rows++;
-    int u = d->fn(&rw, d->arg);
-    if (u != 0) {
-        d->user = u;
-        return u;
+    if (d->fn != NULL && (k % d->every == 0 || k == d->n)) {
+        hl_run_row rw = {k, t, r->z, r->vals[0], r->vals + 1, sigma, ref};
+        s->rows++;
+        int u = d->fn(&rw, d->arg);
+        if (u != 0) {
+            d->user = u;
+            return u;
+        }
     }
-    return HL_OK;
+    return hl_run_progress_(r, &d->progress_next, d->progress_spacing, (double)k, d->n, t,
+                            d->err);
 }
 
 /* A caller's stepper is not trusted to check its result: a value that is
@@ -230,6 +245,8 @@ static long fixed_fused(drive *d, int *st)
     while (*st == HL_OK && k < d->n) {
         long next = d->fn == NULL ? d->n : (k / d->every + 1) * d->every;
         long m = (next > d->n ? d->n : next) - k;
+        if (r->progress != NULL && m > PROGRESS_FUSED_STEPS)
+            m = PROGRESS_FUSED_STEPS;
         memcpy(save, r->z, bytes);
         memcpy(in, r->z, bytes);
         in[n2] = d->dt;
@@ -258,9 +275,11 @@ static int start(drive *d, hl_run *r, const double *z0, double dt, double t, lon
     memset(d, 0, sizeof *d);
     d->r = r, d->dt = dt, d->fn = fn, d->arg = arg, d->s = s, d->err = err;
     d->every = every > 0 ? every : 1;
+    d->progress_next = 1;
+    d->progress_spacing = r->scheme != NULL || r->step != NULL ? PROGRESS_STEPS : 1;
     int st = hl_run_nsteps(&d->n, dt, t, err);
     if (st == HL_OK)
-        st = hl_run_compile_(r, err);
+        st = hl_run_check_start(r, z0, err);
     if (st != HL_OK)
         return st;
     stats_start(s, d->n);
@@ -318,6 +337,13 @@ int hl_run_fixed(hl_run *r, const double *z0, double dt, double t, long every,
 static int adaptive_fn(double t, const double *z, void *arg)
 {
     drive *d = arg;
+    if (t == d->probe_t) { /* not a row: the progress between two */
+        double always = -INFINITY;
+        memcpy(d->probe_z, z, (size_t)(2 * d->r->N) * sizeof *z);
+        d->st = hl_run_progress_(d->r, &always, 0, (double)d->k + (t - (double)d->k * d->dt) / d->dt,
+                                 d->n, t, d->err);
+        return d->st;
+    }
     long k = d->k + 1;
     memcpy(d->r->z, z, (size_t)(2 * d->r->N) * sizeof *z);
     int st = row(d, k, NULL);
@@ -350,16 +376,37 @@ int hl_run_adaptive(hl_run *r, const double *z0, double tol, double dt, double t
     st = row(&d, 0, NULL);
     double *zr = hl_xmalloc((size_t)(2 * r->N) * sizeof *zr);
     long cap = d.n < CHUNK ? d.n : CHUNK;
-    double *ts = hl_xmalloc((size_t)(cap > 0 ? cap : 1) * sizeof *ts);
+    double *ts = hl_xmalloc((size_t)(cap + 1) * sizeof *ts);
+    size_t bytes = (size_t)(2 * r->N) * sizeof *zr;
+    memcpy(zr, r->z, bytes);
+    d.probe_z = zr;
+    /* NOTE: rows far apart (t = 1e12 in 1000 rows) would leave the progress
+     * callback silent for hours: with one, a call of the integrator covers
+     * at most `span` of time, ending at a probe between two rows where the
+     * callback is called and the next call starts; span is doubled or
+     * halved so that a call takes about PROBE_STEPS Taylor steps, from step
+     * counts (not clocks: a run is reproducible).  Without a callback a call
+     * runs CHUNK rows, as always. */
+    double ta = 0, span = r->progress != NULL ? dt * PROBE_FIRST_SPAN : INFINITY;
     while (st == HL_OK && d.k < d.n) {
-        long k0 = d.k, m = d.n - k0 < cap ? d.n - k0 : cap;
-        for (long i = 0; i < m; i++)
-            ts[i] = (double)(k0 + 1 + i) * dt;
-        memcpy(zr, r->z, (size_t)(2 * r->N) * sizeof *zr);
+        long m = 0;
+        double tb = fmin(ta + span, (double)d.n * dt);
+        for (long k = d.k + 1; k <= d.n && m < cap && (double)k * dt <= tb; k++)
+            ts[m++] = (double)k * dt;
+        int probe = r->progress != NULL && m < cap && (m == 0 || ts[m - 1] < tb);
+        if (probe)
+            ts[m++] = tb;
+        d.probe_t = probe ? tb : NAN;
         d.st = HL_OK;
-        st = hl_flow_run(fl, (double)k0 * dt, zr, ts, (int)m, adaptive_fn, &d, err);
+        long steps0 = hl_flow_nsteps(fl);
+        st = hl_flow_run(fl, ta, zr, ts, (int)m, adaptive_fn, &d, err);
         if (st != HL_OK && d.st != HL_OK)
             st = d.st;
+        long used = hl_flow_nsteps(fl) - steps0;
+        span = used < PROBE_STEPS / 4 ? 2 * span : used > 4 * PROBE_STEPS ? span / 2 : span;
+        ta = probe ? tb : (double)d.k * dt;
+        if (!probe)
+            memcpy(zr, r->z, bytes);
     }
     s->ref_steps = hl_flow_nsteps(fl);
     free(ts), free(zr);

@@ -1,5 +1,7 @@
 /* The run object: the stepper, H and the observers compiled to one tape,
  * the vector field for the reference, and reading initial values. */
+#include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -103,6 +105,24 @@ const double *hl_run_state(const hl_run *r) { return r->z; }
 
 void hl_run_set_jit(hl_run *r, int on) { r->jit = on; }
 
+void hl_run_set_progress(hl_run *r, hl_progress_fn fn, void *arg)
+{
+    r->progress = fn;
+    r->progress_arg = arg;
+}
+
+int hl_run_progress_(hl_run *r, double *next, double spacing, double done, long n, double t,
+                     hl_error *err)
+{
+    if (r->progress == NULL || done < *next)
+        return HL_OK;
+    *next = done + spacing;
+    if (r->progress(done, (double)n, r->progress_arg) == 0)
+        return HL_OK;
+    return hl_error_set(err, HL_ESTOP, NULL, -1, 0, "stopped at step %ld of %ld (t = %.17g)",
+                        (long)done, n, t);
+}
+
 static int is_var(const hl_run *r, const char *name)
 {
     for (int i = 0; i < 2 * r->N; i++)
@@ -143,6 +163,63 @@ int hl_run_compile_(hl_run *r, hl_error *err)
     return hl_tape_new(&r->obs, r->outs, r->nout, r->names, 2 * r->N, err);
 }
 
+/* ---- the initial point in H's domain ------------------------------------ */
+
+/* "the initial point (q = -1, p = 1) is outside H's domain: H is not finite
+ * there"; at(i) is the i-th coordinate as text. */
+static int outside_domain(const hl_run *r, char *(*at)(const void *z, int i), const void *z,
+                          hl_error *err)
+{
+    hl_buf b;
+    hl_buf_init(&b);
+    for (int i = 0; i < 2 * r->N; i++) {
+        char *v = at(z, i);
+        hl_buf_printf(&b, "%s%s = %s", i ? ", " : "", r->names[i], v);
+        free(v);
+    }
+    int st = hl_error_set(err, HL_EDOM, NULL, -1, 0,
+                          "the initial point (%s) is outside H's domain: H is not finite there",
+                          b.s);
+    hl_buf_clear(&b);
+    return st;
+}
+
+static char *double_at(const void *z, int i)
+{
+    char s[40];
+    hl_run_fmt_short(s, ((const double *)z)[i]);
+    return hl_xstrdup(s);
+}
+
+static char *arb_at(const void *z, int i)
+{
+    char *f = arb_get_str((arb_srcptr)z + i, 17, ARB_STR_NO_RADIUS);
+    char *s = hl_xstrdup(f);
+    flint_free(f);
+    return s;
+}
+
+int hl_run_check_start(hl_run *r, const double *z0, hl_error *err)
+{
+    int st = hl_run_compile_(r, err);
+    if (st != HL_OK)
+        return st;
+    hl_tape_eval_d(r->vals, z0, r->obs);
+    return isfinite(r->vals[0]) ? HL_OK : outside_domain(r, double_at, z0, err);
+}
+
+int hl_run_check_start_arb(hl_run *r, arb_srcptr z0, slong prec, hl_error *err)
+{
+    int st = hl_run_compile_(r, err);
+    if (st != HL_OK)
+        return st;
+    arb_ptr vals = _arb_vec_init(r->nout);
+    hl_tape_eval_arb(vals, z0, prec, r->obs);
+    st = arb_is_finite(vals) ? HL_OK : outside_domain(r, arb_at, z0, err);
+    _arb_vec_clear(vals, r->nout);
+    return st;
+}
+
 /* ---- initial values --------------------------------------------------- */
 
 static int var_index(hl_system *sys, const char *s, size_t n)
@@ -178,6 +255,23 @@ static int eval_arb(arb_t r, hl_system *sys, const char *text, slong prec, hl_er
     return st;
 }
 
+/* A value read as 0 or as a subnormal double must be 0, or a number whose
+ * ball holds 0 (sin(pi)): a tiny number (1e-400) would silently become 0
+ * or lose its digits.  Arb decides. */
+static int check_underflow(double x, hl_system *sys, const char *text, hl_error *err)
+{
+    arb_t v;
+    arb_init(v);
+    int st = eval_arb(v, sys, text, 64, err);
+    if (st == HL_OK && !arb_contains_zero(v))
+        st = hl_error_set(err, HL_EDOM, NULL, -1, 0,
+                          "the value underflows in double precision (|value| < %.3g: read as "
+                          "%g); a run in Arb (--digits) keeps it",
+                          DBL_MIN, x);
+    arb_clear(v);
+    return st;
+}
+
 /* The value of one item "name = formula" into z[i] (double) and, when za is
  * not NULL, za + i (Arb at prec bits, from the exact form of the formula). */
 static int init_item(double *z, arb_ptr za, slong prec, char *seen, hl_system *sys,
@@ -205,10 +299,12 @@ static int init_item(double *z, arb_ptr za, slong prec, char *seen, hl_system *s
     /* a plain number is read by strtod: correctly rounded, where the
      * expression evaluator's 13/10 may be off by an ulp */
     char *end;
+    errno = 0;
     z[i] = strtod(text, &end);
+    int normal = isfinite(z[i]) && (fabs(z[i]) >= DBL_MIN || (z[i] == 0 && errno == 0));
     while (*end == ' ' || *end == '\t')
         end++;
-    if (end != text && *end == '\0' && isfinite(z[i]) && za == NULL) {
+    if (end != text && *end == '\0' && normal && za == NULL) {
         free(text);
         seen[i] = 1;
         return HL_OK;
@@ -224,6 +320,8 @@ static int init_item(double *z, arb_ptr za, slong prec, char *seen, hl_system *s
         if (st == HL_OK && !(end != text && *end == '\0' && isfinite(z[i])))
             z[i] = zi;
     }
+    if (st == HL_OK && za == NULL && fabs(z[i]) < DBL_MIN)
+        st = check_underflow(z[i], sys, text, err);
     if (st == HL_OK && za != NULL)
         st = eval_arb(za + i, sys, text, prec, err);
     free(text);

@@ -24,8 +24,17 @@ struct hl_run {
     int fused_failed;           /* no fused tape for this scheme */
     double ref_tol;
     double *z, *ref, *vals;     /* state, reference, H and observers */
+    hl_progress_fn progress;    /* the caller's, or NULL (hl_run_set_progress) */
+    void *progress_arg;
 };
 
 int hl_run_compile_(hl_run *r, hl_error *err);
+
+/* The caller's progress callback when `done` steps (or output rows; a
+ * fraction between two rows) have reached *next, then *next = done +
+ * spacing; HL_ESTOP (with the step, n and t in the message) when it asks to
+ * stop. */
+int hl_run_progress_(hl_run *r, double *next, double spacing, double done, long n, double t,
+                     hl_error *err);
 
 #endif

@@ -30,6 +30,8 @@
 #include <float.h>
 #include <limits.h>
 #include <math.h>
+#include <pthread.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -478,6 +480,32 @@ static int watch_shape(const hl_tape *t)
 
 /* Build the functions and compile them; NULL result on failure (message in
  * the context). */
+/* NOTE: libgccjit runs GCC's driver in process, and the driver installs its
+ * own handlers for SIGINT, SIGHUP, SIGTERM and SIGPIPE (GCC's fatal_signal,
+ * which kills the process) and SIGCHLD, and leaves them there: a caller's
+ * Ctrl-C handler (hamlie run stops cleanly on it) was gone after the first
+ * compilation.  They are put back after each compilation; the signals that
+ * stop a job are held meanwhile and reach the caller's handler after. */
+static gcc_jit_result *compile(gcc_jit_context *c)
+{
+    static const int sigs[] = {SIGINT, SIGHUP, SIGTERM, SIGPIPE, SIGCHLD};
+    enum { NSIGS = sizeof sigs / sizeof sigs[0] };
+    struct sigaction saved[NSIGS];
+    sigset_t hold, prev;
+    sigemptyset(&hold);
+    sigaddset(&hold, SIGINT);
+    sigaddset(&hold, SIGHUP);
+    sigaddset(&hold, SIGTERM);
+    for (int i = 0; i < NSIGS; i++)
+        sigaction(sigs[i], NULL, &saved[i]);
+    pthread_sigmask(SIG_BLOCK, &hold, &prev);
+    gcc_jit_result *res = gcc_jit_context_compile(c);
+    for (int i = 0; i < NSIGS; i++)
+        sigaction(sigs[i], &saved[i], NULL);
+    pthread_sigmask(SIG_SETMASK, &prev, NULL);
+    return res;
+}
+
 static gcc_jit_result *build(gcc_jit_context *c, const hl_tape *t)
 {
     jit J = {.c = c, .t = t};
@@ -493,7 +521,7 @@ static gcc_jit_result *build(gcc_jit_context *c, const hl_tape *t)
         build_loop(&J, 1);
     free(J.loc);
     free(J.read);
-    return gcc_jit_context_compile(c);
+    return compile(c);
 }
 
 /* Extra options from $HL_JIT_FLAGS (space-separated), for experiments such
@@ -1018,7 +1046,7 @@ int hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tape *t, 
     free(T->inv2);
     free(T->def);
     free(T->coef);
-    gcc_jit_result *res = gcc_jit_context_compile(c);
+    gcc_jit_result *res = compile(c);
     void *f = res ? gcc_jit_result_get_code(res, "hl_native") : NULL;
     int status = HL_OK;
     if (f == NULL) {
@@ -1467,7 +1495,7 @@ int hl_newton_jit(hl_newton *nw, hl_error *err)
     build_newton(&N, nw);
     for (int k = 0; k < N.ntapes; k++)
         free(N.T[k].loc), free(N.T[k].read);
-    gcc_jit_result *res = gcc_jit_context_compile(c);
+    gcc_jit_result *res = compile(c);
     void *fn = res != NULL ? gcc_jit_result_get_code(res, "hl_jit_newton") : NULL;
     int status = HL_OK;
     if (fn == NULL) {
