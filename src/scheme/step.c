@@ -163,8 +163,27 @@ static int has_unknown(const hl_expr *e, const hl_scheme *s)
     return 0;
 }
 
-/* Does e divide by something that depends on an unknown?  ((P^2 - p^2)/(P - p)
- * is 0/0 at P = p, and loses digits near it.) */
+/* Does the divisor d, which depends on an unknown, vanish at D = 0 (every
+ * unknown at its value there)?  Then the quotient is 0/0 where the unknowns
+ * meet the current point.  A divisor that cannot be read exactly counts as
+ * vanishing. */
+static int vanishes_at_zero(const hl_expr *d, const hl_scheme *s)
+{
+    hl_alg_ctx *ctx = hl_system_ctx(s->sys);
+    hl_alg a;
+    hl_alg_init(&a, ctx);
+    const hl_expr *d0 = scheme_at_zero(s, hl_system_pool(s->sys), d);
+    int r = has_unknown(d0, s) || hl_alg_from_expr(&a, d0, ctx, NULL) != HL_OK ||
+            hl_alg_is_zero(&a, ctx);
+    hl_alg_clear(&a, ctx);
+    return r;
+}
+
+/* Does e divide by something in the unknowns that vanishes at D = 0?
+ * ((P^2 - p^2)/(P - p) is 0/0 at P = p, and loses digits near it.)  A
+ * divisor such as Kepler's |q + D k|^3 in a Runge-Kutta stage does not: its
+ * equation is kept as written, as its canonical form over the stages swells
+ * (gauss3 on 3-D Kepler: over a minute). */
 static int divides_by_unknown(const hl_expr *e, const hl_scheme *s, hl_memo *seen)
 {
     hl_memo_val *v = hl_memo_get(seen, e);
@@ -173,11 +192,12 @@ static int divides_by_unknown(const hl_expr *e, const hl_scheme *s, hl_memo *see
     int r = 0;
     switch (e->kind) {
     case HL_DIV:
-        r = has_unknown(e->b, s) || divides_by_unknown(e->a, s, seen) ||
-            divides_by_unknown(e->b, s, seen);
+        r = (has_unknown(e->b, s) && vanishes_at_zero(e->b, s)) ||
+            divides_by_unknown(e->a, s, seen) || divides_by_unknown(e->b, s, seen);
         break;
     case HL_POW:
-        r = (e->b->kind != HL_NUM || fmpq_sgn(e->b->num) < 0) && has_unknown(e->a, s);
+        r = (e->b->kind != HL_NUM || fmpq_sgn(e->b->num) < 0) && has_unknown(e->a, s) &&
+            vanishes_at_zero(e->a, s);
         r = r || divides_by_unknown(e->a, s, seen) || divides_by_unknown(e->b, s, seen);
         break;
     case HL_ADD:
