@@ -62,6 +62,38 @@ int hl_expr_has_symbol(const hl_expr *e, const char *name)
     return r;
 }
 
+/* ---- divisors ----------------------------------------------------------------- */
+
+typedef struct div_walk {
+    hl_memo seen;
+    int (*is_bad)(const hl_expr *d, void *arg);
+    void *arg;
+} div_walk;
+
+static int divides(div_walk *w, const hl_expr *e)
+{
+    hl_memo_val *v = hl_memo_get(&w->seen, e);
+    if (v)
+        return v->i;
+    int r = 0;
+    if (e->kind == HL_DIV)
+        r = w->is_bad(e->b, w->arg);
+    else if (e->kind == HL_POW && (e->b->kind != HL_NUM || fmpq_sgn(e->b->num) < 0))
+        r = w->is_bad(e->a, w->arg);
+    r = r || (e->a && divides(w, e->a)) || (e->b && divides(w, e->b));
+    hl_memo_put(&w->seen, e)->i = r;
+    return r;
+}
+
+int hl_expr_divides_by(const hl_expr *e, int (*is_bad)(const hl_expr *d, void *arg), void *arg)
+{
+    div_walk w = {.is_bad = is_bad, .arg = arg};
+    hl_memo_init(&w.seen);
+    int r = divides(&w, e);
+    hl_memo_clear(&w.seen);
+    return r;
+}
+
 /* ---- cost --------------------------------------------------------------------- */
 
 static double cost(hl_memo *seen, const hl_expr *e)
