@@ -52,6 +52,7 @@ typedef struct hl_errors {
     int disagree_k; /* first k where they do not (0 if they agree) */
     int leading;    /* m: the least k with v_k != 0, or 0 if none up to n */
     int order;      /* m - 1, or n when no error up to n (exact to that order) */
+    hl_series *K;   /* checked: K(D)'s series, 2N of psi's length - 1 (else NULL) */
 } hl_errors;
 
 /* psi: 2N series (Q_1..Q_N, P_1..P_N) known to at least O(D^(n+1)).
@@ -90,6 +91,13 @@ int hl_errors_scheme_map(hl_alg *images, const struct hl_scheme *s, hl_error *er
 /* K(D) = (d/dD psi_D)(psi_{-D}(z)) in closed form for a map given by its 2N
  * images (hl_alg_subst of psi_{-D}'s components into d psi/dD). */
 int hl_errors_K_closed(hl_alg *K, const hl_alg *images, hl_system *sys, hl_error *err);
+
+/* The same within a size budget (hl_alg_subst_bounded): HL_ELIMIT, and
+ * *reached the terms an intermediate polynomial reached, once one exceeds
+ * max_terms; K is then left partial.  The closed form of a scheme that
+ * nests radicals (Stormer-Verlet on Kepler) swells past any printable size. */
+int hl_errors_K_closed_bounded(hl_alg *K, long *reached, const hl_alg *images, long max_terms,
+                               hl_system *sys, hl_error *err);
 
 /* The corrected scheme psi_D - sum_{k=2}^{m} D^k/k! v_k (m <= e->n):
  * as series (out: 2N series, the length of psi's) and, when images is not

@@ -39,6 +39,15 @@ int hl_errors_scheme_map(hl_alg *images, const hl_scheme *s, hl_error *err)
 
 int hl_errors_K_closed(hl_alg *K, const hl_alg *images, hl_system *sys, hl_error *err)
 {
+    long reached;
+    return hl_errors_K_closed_bounded(K, &reached, images, 0, sys, err);
+}
+
+int hl_errors_K_closed_bounded(hl_alg *K, long *reached, const hl_alg *images, long max_terms,
+                               hl_system *sys, hl_error *err)
+{
+    *reached = 0;
+    long most = 0;
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     int m = 2 * hl_system_ndof(sys), vD = hl_system_var_D(sys), st = HL_OK;
     int *vars = hl_xmalloc((size_t)m * sizeof *vars);
@@ -49,13 +58,17 @@ int hl_errors_K_closed(hl_alg *K, const hl_alg *images, hl_system *sys, hl_error
     hl_alg_neg(&mD, &mD, ctx);
     for (int i = 0; i < m && st == HL_OK; i++) {
         vars[i] = i; /* q_1..q_N, p_1..p_N are base symbols 0..2N-1 (ham.h) */
-        st = hl_alg_subst(&back[i], &images[i], 1, &vD, &mD, ctx, err);
+        st = hl_alg_subst_bounded(&back[i], reached, &images[i], 1, &vD, &mD, max_terms, ctx,
+                                  err);
+        most = *reached > most ? *reached : most;
     }
     for (int i = 0; i < m && st == HL_OK; i++) {
         st = hl_alg_diff(&d, &images[i], vD, ctx, err);
         if (st == HL_OK)
-            st = hl_alg_subst(&K[i], &d, m, vars, back, ctx, err);
+            st = hl_alg_subst_bounded(&K[i], reached, &d, m, vars, back, max_terms, ctx, err);
+        most = *reached > most ? *reached : most;
     }
+    *reached = most;
     hl_alg_clear(&mD, ctx);
     hl_alg_clear(&d, ctx);
     hl_alg_vec_free(back, m, ctx);

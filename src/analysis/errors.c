@@ -60,8 +60,7 @@ static int errors_from_K(hl_errors *e, const hl_series *psi, const hl_series *li
     for (int i = 0; i < m; i++)
         vars[i] = i < N ? hl_system_var_q(sys, i) : hl_system_var_p(sys, i - N);
     int vD = hl_system_var_D(sys);
-    hl_series *K = series_vec(m, 0, ctx), *Kt = series_vec(m, 0, ctx),
-              *pt = series_vec(m, 0, ctx);
+    hl_series *K = e->K, *Kt = series_vec(m, 0, ctx), *pt = series_vec(m, 0, ctx);
     hl_alg d;
     fmpq_t f;
     hl_alg_init(&d, ctx);
@@ -86,7 +85,6 @@ static int errors_from_K(hl_errors *e, const hl_series *psi, const hl_series *li
     }
     hl_alg_clear(&d, ctx);
     fmpq_clear(f);
-    series_vec_free(K, m, ctx);
     series_vec_free(Kt, m, ctx);
     series_vec_free(pt, m, ctx);
     free(vars);
@@ -101,6 +99,7 @@ static int compute(hl_errors *e, const hl_series *psi, hl_system *sys, int n, in
     e->N = N;
     e->n = n;
     e->v = e->vK = NULL;
+    e->K = NULL;
     e->checked = cross;
     e->agree = cross;
     e->disagree_k = 0;
@@ -111,6 +110,7 @@ static int compute(hl_errors *e, const hl_series *psi, hl_system *sys, int n, in
                             "the order must be between 2 and %d, not %d", HL_SERIES_MAX_N - 2, n);
     e->v = hl_alg_vec_new((n + 1) * m, ctx);
     e->vK = hl_alg_vec_new((n + 1) * m, ctx);
+    e->K = cross ? series_vec(m, 0, ctx) : NULL;
     if (!hl_system_has_H(sys))
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "error analysis needs a Hamiltonian");
     for (int i = 0; i < m; i++)
@@ -170,5 +170,7 @@ void hl_errors_clear(hl_errors *e, hl_system *sys)
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     hl_alg_vec_free(e->v, (e->n + 1) * 2 * e->N, ctx);
     hl_alg_vec_free(e->vK, (e->n + 1) * 2 * e->N, ctx);
+    series_vec_free(e->K, 2 * e->N, ctx);
     e->v = e->vK = NULL;
+    e->K = NULL;
 }
