@@ -4,8 +4,24 @@
 #include <string.h>
 
 #include "base/buf.h"
+#include "expr/memo.h"
 #include "hamlie/analysis.h"
 #include "hamlie/scheme.h"
+
+/* How deep functions (sin, sqrt, a non-integer power, ...) nest in e. */
+static int nesting(const hl_expr *e, hl_memo *seen)
+{
+    hl_memo_val *v = hl_memo_get(seen, e);
+    if (v)
+        return v->i;
+    int a = e->a ? nesting(e->a, seen) : 0, b = e->b ? nesting(e->b, seen) : 0;
+    int d = a > b ? a : b;
+    if (e->kind == HL_FUN ||
+        (e->kind == HL_POW && (e->b->kind != HL_NUM || !fmpz_is_one(fmpq_denref(e->b->num)))))
+        d++;
+    hl_memo_put(seen, e)->i = d;
+    return d;
+}
 
 int hl_errors_scheme_map(hl_alg *images, const hl_scheme *s, hl_error *err)
 {
@@ -27,6 +43,18 @@ int hl_errors_scheme_map(hl_alg *images, const hl_scheme *s, hl_error *err)
         names[nk] = s->unknown[u];
         vals[nk++] = e;
     }
+    hl_memo seen;
+    hl_memo_init(&seen);
+    int depth = 0;
+    for (int j = 0; j < 2 * s->N; j++) {
+        int d = nesting(val_of[j < s->N ? s->iQ[j] : s->iP[j - s->N]], &seen);
+        depth = d > depth ? d : depth;
+    }
+    hl_memo_clear(&seen);
+    if (depth > HL_ERRORS_MAP_MAX_NESTING)
+        st = hl_error_set(err, HL_ELIMIT, NULL, -1, 0,
+                          "functions nest %d deep in the map (more than %d)", depth,
+                          HL_ERRORS_MAP_MAX_NESTING);
     for (int j = 0; j < 2 * s->N && st == HL_OK; j++) {
         int u = j < s->N ? s->iQ[j] : s->iP[j - s->N];
         st = hl_alg_from_expr(&images[j], val_of[u], ctx, err);
