@@ -22,7 +22,7 @@
 /* Terms the coefficients of one composition of the K route (the check of
  * the v_k) may reach together: past it (Gonzalez on Henon-Heiles, Yoshida on Kepler)
  * the v_k are computed one way only, and the output says so. */
-#define K_ROUTE_BUDGET 150000
+#define K_ROUTE_BUDGET 250000
 
 const char cmd_errors_help[] =
     "usage: hamlie errors -H FORMULA (--scheme NAME | --map MAP | --equations EQS)\n"
