@@ -10,7 +10,13 @@
 set -u
 HAMLIE=${1:?usage: errors-budget.sh path/to/hamlie}
 . "$(dirname "$0")/lib/harness.sh"
-LIMIT=${HAMLIE_TEST_LIMIT:-20} # seconds a call may take (generous for the sanitizer build)
+LIMIT=${HAMLIE_TEST_LIMIT:-20} # seconds a call may take
+# The sanitizer build runs 3-5 times slower: there the limit is 4 times as
+# long, and Kepler (seconds a call here) is run for three schemes only,
+# which take each path that leaves a part out (K's closed form, the map,
+# the check by K), so CI stays short.
+SANITIZED=0
+ldd "$HAMLIE" 2>/dev/null | grep -q libasan && SANITIZED=1 && LIMIT=$((4 * LIMIT))
 KEPLER='(px^2+py^2)/2 - 1/sqrt(x^2+y^2)'
 HENON='(px^2+py^2+x^2+y^2)/2 + x^2*y - y^3/3'
 MORSE='p^2/2 + (1-exp(-q))^2'
@@ -45,6 +51,10 @@ while read -r name order restricted; do
         # (0/0 at D = 0) with radicals of both Z and z: its expansion to D^7
         # takes minutes (errors --numeric --at is the route for it).
         [ "$name" = gonzalez ] && [ $sys = KEPLER ] && continue
+        case "$SANITIZED $sys $name" in
+        "1 KEPLER stormer-verlet-kdk" | "1 KEPLER yoshida4" | "1 KEPLER gauss3") ;;
+        "1 KEPLER "*) continue ;;
+        esac
         if [ "$restricted" = 1 ]; then # refused on these systems, quickly
             timed 2 errors -H "${!sys}" --scheme "$name" --order 6 --json
             continue
