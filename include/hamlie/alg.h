@@ -134,6 +134,13 @@ int hl_alg_antiderivative(hl_alg *r, int *found, const hl_alg *f, int x, hl_alg_
 int hl_alg_subst(hl_alg *r, const hl_alg *a, int n, const int *vars, const hl_alg *vals,
                  hl_alg_ctx *ctx, hl_error *err);
 
+/* hl_alg_subst with a size budget, checked as the result grows: HL_ELIMIT,
+ * and *reached the terms seen when it stopped, once a numerator or
+ * denominator would exceed max_terms terms (or the canonical form's
+ * products max_terms^2/10 term pairs).  max_terms <= 0: no budget. */
+int hl_alg_subst_bounded(hl_alg *r, long *reached, const hl_alg *a, int n, const int *vars,
+                         const hl_alg *vals, long max_terms, hl_alg_ctx *ctx, hl_error *err);
+
 /* Zero test: exact where the canonical form decides, else numeric (see top). */
 int hl_alg_is_zero(const hl_alg *a, hl_alg_ctx *ctx);
 int hl_alg_equal(const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx);

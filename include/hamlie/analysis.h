@@ -52,12 +52,24 @@ typedef struct hl_errors {
     int disagree_k; /* first k where they do not (0 if they agree) */
     int leading;    /* m: the least k with v_k != 0, or 0 if none up to n */
     int order;      /* m - 1, or n when no error up to n (exact to that order) */
+    hl_series *K;   /* K(D)'s series, 2N of psi's length - 1, when the K route
+                     * computed it (else NULL) */
+    long budget;    /* hl_errors_compute_bounded: the K route's budget, and */
+    int over_budget; /* it passed it: checked = agree = 0, the v_k direct only */
 } hl_errors;
 
 /* psi: 2N series (Q_1..Q_N, P_1..P_N) known to at least O(D^(n+1)).
  * Fills e (call hl_errors_clear after, also on failure). */
 int hl_errors_compute(hl_errors *e, const hl_series *psi, hl_system *sys, int n,
                       hl_error *err);
+
+/* The same with the K route (a check) within a size budget: once a
+ * coefficient of a composition passes max_terms terms
+ * (hl_series_scheme_K_bounded) the route stops and e->over_budget = 1,
+ * checked = agree = 0; e->K is kept when its own composition fitted.  The
+ * v_k, leading and order come from the direct route either way. */
+int hl_errors_compute_bounded(hl_errors *e, const hl_series *psi, hl_system *sys, int n,
+                              long max_terms, hl_error *err);
 void hl_errors_clear(hl_errors *e, hl_system *sys);
 
 /* The direct route alone (the expansion minus the Lie series): v, leading
@@ -84,12 +96,23 @@ struct hl_scheme;
 
 /* The images (Q_1..Q_N, P_1..P_N) of an explicit scheme (s->all_explicit) in
  * closed form: its equations evaluated in order.  HL_EINVAL for an implicit
- * scheme or one with integrals. */
+ * scheme or one with integrals; HL_ELIMIT when functions (sqrt, sin, a
+ * non-integer power) nest more than HL_ERRORS_MAP_MAX_NESTING deep in the
+ * images, whose exact normal form swells (yoshida4 on Kepler: 4 deep, no
+ * answer in a minute). */
+#define HL_ERRORS_MAP_MAX_NESTING 3
 int hl_errors_scheme_map(hl_alg *images, const struct hl_scheme *s, hl_error *err);
 
 /* K(D) = (d/dD psi_D)(psi_{-D}(z)) in closed form for a map given by its 2N
  * images (hl_alg_subst of psi_{-D}'s components into d psi/dD). */
 int hl_errors_K_closed(hl_alg *K, const hl_alg *images, hl_system *sys, hl_error *err);
+
+/* The same within a size budget (hl_alg_subst_bounded): HL_ELIMIT, and
+ * *reached the terms an intermediate polynomial reached, once one exceeds
+ * max_terms; K is then left partial.  The closed form of a scheme that
+ * nests radicals (Stormer-Verlet on Kepler) swells past any printable size. */
+int hl_errors_K_closed_bounded(hl_alg *K, long *reached, const hl_alg *images, long max_terms,
+                               hl_system *sys, hl_error *err);
 
 /* The corrected scheme psi_D - sum_{k=2}^{m} D^k/k! v_k (m <= e->n):
  * as series (out: 2N series, the length of psi's) and, when images is not

@@ -165,6 +165,11 @@ int hl_expr_postorder(const hl_expr *const *roots, int n,
 /* Does e mention the symbol? */
 int hl_expr_has_symbol(const hl_expr *e, const char *name);
 
+/* Does e divide by a d with is_bad(d, arg) != 0?  The divisors are the b of
+ * every a / b and the base of every a ^ b whose exponent is not a number
+ * >= 0; is_bad is asked once per distinct divisor node. */
+int hl_expr_divides_by(const hl_expr *e, int (*is_bad)(const hl_expr *d, void *arg), void *arg);
+
 /* A rough cost of evaluating e[0..n-1] once in double, a node shared
  * between them counted once: 1 an arithmetic node, 4 a division, 20 a
  * function, 40 a power that is not an integer one (the calls dominate).

@@ -122,8 +122,10 @@ int hl_series_eval_expr(hl_series *out, const hl_expr *e, int nsym, const char *
  * (normally the matching phase variable).  Finds Z[i], n coefficients each,
  * with every equation satisfied to O(step^n).
  *
- * Each equation is replaced by the numerator of lhs - rhs, cleared of the
- * largest power of the step dividing it, so (X - x)/D = ... is accepted.  The
+ * An equation regular at step 0 as written (no divisor in the unknowns or
+ * the step vanishing there, and not vanishing identically there) is kept as
+ * written.  Any other is replaced by the numerator of lhs - rhs, cleared of
+ * the largest power of the step dividing it, so (X - x)/D = ... is accepted.  The
  * numerators must vanish at (z0, step = 0) ("the scheme is not the identity at
  * D = 0") and their Jacobian in the unknowns there must be invertible ("the
  * scheme does not determine (X, P) at D = 0").  Then, for k = 1..n-1,
@@ -154,6 +156,13 @@ int hl_series_compose(hl_series *r, int m, const hl_series *A, int nvars, const 
  * image of base symbol vars[i].  n of K is one less than that of psi. */
 int hl_series_scheme_K(hl_series *K, int m, const hl_series *psi, const int *vars, int var_D,
                        hl_alg_ctx *ctx, hl_error *err);
+
+/* The same within a size budget: HL_ELIMIT once the coefficients of the
+ * composition's work, all together, pass max_terms terms (0: no limit),
+ * checked as each is formed.  K(D) of a scheme whose expansion is large (Gonzalez on
+ * Henon-Heiles) swells past any useful size. */
+int hl_series_scheme_K_bounded(hl_series *K, int m, const hl_series *psi, const int *vars,
+                               int var_D, long max_terms, hl_alg_ctx *ctx, hl_error *err);
 
 #ifdef __cplusplus
 }

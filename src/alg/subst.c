@@ -4,6 +4,7 @@
  * value).  Then num and den are composed with the images: with unit
  * denominators by FLINT's composition, else term by term over the common
  * denominator prod d_i^(deg_i). */
+#include <math.h>
 #include <stdlib.h>
 
 #include "alg/alg_internal.h"
@@ -35,9 +36,54 @@ static int remake_atom(hl_alg *r, const alg_atom *at, const hl_alg *arg, const h
     return HL_OK;
 }
 
-/* P(images) * prod_i den_i^(bound_i) as a polynomial (term by term). */
-static void compose_terms(fmpz_mpoly_t out, const fmpz_mpoly_t p, const hl_alg *img,
-                          const slong *bound, hl_alg_ctx *ctx)
+/* A size budget for one substitution (hl_alg_subst_bounded): a term count
+ * no polynomial may pass, and the work left, in term-pair products, which
+ * is asked for before each product (its cost, and the most terms it may
+ * give, is the product of the lengths), so a swell stops before it costs. */
+typedef struct size_budget {
+    long terms;    /* 0: no budget */
+    double work;   /* term pairs left */
+    long reached;  /* the largest size seen (or a product's bound, at the stop) */
+} size_budget;
+
+#define BUDGET_WORK_PER_TERM 1000.0 /* work allowed: this many pairs per term */
+
+static int budget_size(size_budget *b, slong length)
+{
+    if (length > b->reached)
+        b->reached = length;
+    return b->terms == 0 || length <= b->terms;
+}
+
+/* May a product of la and lb terms (la^e for a power) be formed? */
+static int budget_product(size_budget *b, double bound)
+{
+    if (b->terms == 0)
+        return 1;
+    b->work -= bound;
+    if (b->work >= 0)
+        return 1;
+    if (bound > (double)b->reached)
+        b->reached = bound > 1e18 ? (long)1e18 : (long)bound;
+    return 0;
+}
+
+/* u = base^e and t *= u, within the budget */
+static int mul_power(fmpz_mpoly_t t, fmpz_mpoly_t u, const fmpz_mpoly_t base, ulong e,
+                     size_budget *b, const fmpz_mpoly_ctx_struct *mc)
+{
+    double lu = pow((double)base->length, (double)e);
+    if (!budget_product(b, lu) || !budget_product(b, lu * (double)t->length))
+        return 0;
+    fmpz_mpoly_pow_ui(u, base, e, mc);
+    fmpz_mpoly_mul(t, t, u, mc);
+    return budget_size(b, u->length) && budget_size(b, t->length);
+}
+
+/* P(images) * prod_i den_i^(bound_i) as a polynomial (term by term);
+ * 0 when it stopped over the budget. */
+static int compose_terms(fmpz_mpoly_t out, const fmpz_mpoly_t p, const hl_alg *img,
+                         const slong *bound, size_budget *b, hl_alg_ctx *ctx)
 {
     const fmpz_mpoly_ctx_struct *mc = ctx->mctx;
     int nv = alg_nvars(ctx);
@@ -46,24 +92,26 @@ static void compose_terms(fmpz_mpoly_t out, const fmpz_mpoly_t p, const hl_alg *
     fmpz_mpoly_init(t, mc);
     fmpz_mpoly_init(u, mc);
     fmpz_mpoly_zero(out, mc);
-    for (slong i = 0; i < p->length; i++) {
+    int within = 1;
+    for (slong i = 0; i < p->length && within; i++) {
         fmpz_mpoly_get_term_exp_ui(exp, p, i, ctx->mctx);
         fmpz_mpoly_set_fmpz(t, p->coeffs + i, mc);
-        for (int v = 0; v < nv; v++) {
-            if (exp[v] > 0) {
-                fmpz_mpoly_pow_ui(u, img[v].num, exp[v], mc);
-                fmpz_mpoly_mul(t, t, u, mc);
-            }
-            if (bound[v] > 0 && (ulong)bound[v] > exp[v] && !fmpz_mpoly_is_one(img[v].den, mc)) {
-                fmpz_mpoly_pow_ui(u, img[v].den, (ulong)bound[v] - exp[v], mc);
-                fmpz_mpoly_mul(t, t, u, mc);
-            }
+        for (int v = 0; v < nv && within; v++) {
+            if (exp[v] > 0)
+                within = mul_power(t, u, img[v].num, exp[v], b, mc);
+            if (within && bound[v] > 0 && (ulong)bound[v] > exp[v] &&
+                !fmpz_mpoly_is_one(img[v].den, mc))
+                within = mul_power(t, u, img[v].den, (ulong)bound[v] - exp[v], b, mc);
         }
-        fmpz_mpoly_add(out, out, t, mc);
+        if (within) {
+            fmpz_mpoly_add(out, out, t, mc);
+            within = budget_size(b, out->length);
+        }
     }
     fmpz_mpoly_clear(t, mc);
     fmpz_mpoly_clear(u, mc);
     free(exp);
+    return within;
 }
 
 typedef struct subst_state {
@@ -73,10 +121,18 @@ typedef struct subst_state {
     unsigned char *known;
     unsigned char *moved; /* the image differs from the variable */
     int natoms0;          /* atoms made while substituting need no image */
+    size_budget budget;
 } subst_state;
 
 static int subst_rec(hl_alg *r, const hl_alg *a, subst_state *st, hl_alg_ctx *ctx,
                      hl_error *err);
+
+static int budget_error(const subst_state *st, hl_error *err)
+{
+    return hl_error_set(err, HL_ELIMIT, NULL, -1, 0,
+                        "the substitution exceeds its budget of %ld terms (%ld reached)",
+                        st->budget.terms, st->budget.reached);
+}
 
 /* The image of atom k, made on demand: atoms that do not occur are never
  * touched, and an argument only involves older atoms, so this ends. */
@@ -137,7 +193,7 @@ static int subst_rec(hl_alg *r, const hl_alg *a, subst_state *st, hl_alg_ctx *ct
             else
                 alg_set_var(&self[v], v, ctx);
         }
-        if (all_poly) {
+        if (all_poly && st->budget.terms == 0) {
             fmpz_mpoly_struct **C = hl_xmalloc((size_t)nv * sizeof *C);
             for (int v = 0; v < nv; v++)
                 C[v] = self[v].num;
@@ -148,11 +204,16 @@ static int subst_rec(hl_alg *r, const hl_alg *a, subst_state *st, hl_alg_ctx *ct
             for (int v = 0; v < nv; v++)
                 if (!st->moved[v])
                     dn[v] = 0; /* no denominator to clear */
-            compose_terms(t.num, a->num, self, dn, ctx);
-            compose_terms(t.den, a->den, self, dn, ctx);
+            if (!compose_terms(t.num, a->num, self, dn, &st->budget, ctx) ||
+                !compose_terms(t.den, a->den, self, dn, &st->budget, ctx))
+                status = budget_error(st, err);
         }
         hl_alg_vec_free(self, nv, ctx);
     }
+    /* the canonical form multiplies num by den's conjugates */
+    if (status == HL_OK && any &&
+        !budget_product(&st->budget, (double)t.num->length * (double)t.den->length))
+        status = budget_error(st, err);
     if (status == HL_OK && any) {
         if (fmpz_mpoly_is_zero(t.den, mc))
             status = hl_error_set(err, HL_EDOM, NULL, -1, 0, "division by zero");
@@ -173,6 +234,14 @@ static int subst_rec(hl_alg *r, const hl_alg *a, subst_state *st, hl_alg_ctx *ct
 int hl_alg_subst(hl_alg *r, const hl_alg *a, int n, const int *vars, const hl_alg *vals,
                  hl_alg_ctx *ctx, hl_error *err)
 {
+    long reached;
+    return hl_alg_subst_bounded(r, &reached, a, n, vars, vals, 0, ctx, err);
+}
+
+int hl_alg_subst_bounded(hl_alg *r, long *reached, const hl_alg *a, int n, const int *vars,
+                         const hl_alg *vals, long max_terms, hl_alg_ctx *ctx, hl_error *err)
+{
+    *reached = 0;
     int nv = alg_nvars(ctx);
     for (int i = 0; i < n; i++)
         if (vars[i] < 0 || vars[i] >= ctx->nbase)
@@ -181,6 +250,9 @@ int hl_alg_subst(hl_alg *r, const hl_alg *a, int n, const int *vars, const hl_al
     st.n = n;
     st.vars = vars;
     st.natoms0 = ctx->natoms;
+    st.budget.terms = max_terms > 0 ? max_terms : 0;
+    st.budget.work = BUDGET_WORK_PER_TERM * (double)st.budget.terms;
+    st.budget.reached = 0;
     st.img = hl_alg_vec_new(nv, ctx);
     st.known = hl_xcalloc((size_t)nv, 1);
     st.moved = hl_xcalloc((size_t)nv, 1);
@@ -189,6 +261,7 @@ int hl_alg_subst(hl_alg *r, const hl_alg *a, int n, const int *vars, const hl_al
         st.moved[vars[i]] = st.known[vars[i]] = 1;
     }
     int status = subst_rec(r, a, &st, ctx, err);
+    *reached = st.budget.reached;
     hl_alg_vec_free(st.img, nv, ctx);
     free(st.known);
     free(st.moved);

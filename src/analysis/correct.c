@@ -4,8 +4,22 @@
 #include <string.h>
 
 #include "base/buf.h"
+#include "expr/memo.h"
 #include "hamlie/analysis.h"
 #include "hamlie/scheme.h"
+
+/* How deep functions (sin, sqrt, a non-integer power, ...) nest: per node,
+ * from its operands' depths (post-order, so no chain is too deep). */
+static int nesting_node(void *seen, const hl_expr *e)
+{
+    int a = e->a ? hl_memo_get(seen, e->a)->i : 0, b = e->b ? hl_memo_get(seen, e->b)->i : 0;
+    int d = a > b ? a : b;
+    if (e->kind == HL_FUN ||
+        (e->kind == HL_POW && (e->b->kind != HL_NUM || !fmpz_is_one(fmpq_denref(e->b->num)))))
+        d++;
+    hl_memo_put(seen, e)->i = d;
+    return 0;
+}
 
 int hl_errors_scheme_map(hl_alg *images, const hl_scheme *s, hl_error *err)
 {
@@ -27,6 +41,20 @@ int hl_errors_scheme_map(hl_alg *images, const hl_scheme *s, hl_error *err)
         names[nk] = s->unknown[u];
         vals[nk++] = e;
     }
+    hl_memo seen;
+    hl_memo_init(&seen);
+    int depth = 0;
+    for (int j = 0; j < 2 * s->N; j++) {
+        const hl_expr *img = val_of[j < s->N ? s->iQ[j] : s->iP[j - s->N]];
+        hl_expr_postorder(&img, 1, nesting_node, &seen);
+        int d = hl_memo_get(&seen, img)->i;
+        depth = d > depth ? d : depth;
+    }
+    hl_memo_clear(&seen);
+    if (depth > HL_ERRORS_MAP_MAX_NESTING)
+        st = hl_error_set(err, HL_ELIMIT, NULL, -1, 0,
+                          "functions nest %d deep in the map (more than %d)", depth,
+                          HL_ERRORS_MAP_MAX_NESTING);
     for (int j = 0; j < 2 * s->N && st == HL_OK; j++) {
         int u = j < s->N ? s->iQ[j] : s->iP[j - s->N];
         st = hl_alg_from_expr(&images[j], val_of[u], ctx, err);
@@ -39,6 +67,15 @@ int hl_errors_scheme_map(hl_alg *images, const hl_scheme *s, hl_error *err)
 
 int hl_errors_K_closed(hl_alg *K, const hl_alg *images, hl_system *sys, hl_error *err)
 {
+    long reached;
+    return hl_errors_K_closed_bounded(K, &reached, images, 0, sys, err);
+}
+
+int hl_errors_K_closed_bounded(hl_alg *K, long *reached, const hl_alg *images, long max_terms,
+                               hl_system *sys, hl_error *err)
+{
+    *reached = 0;
+    long most = 0;
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     int m = 2 * hl_system_ndof(sys), vD = hl_system_var_D(sys), st = HL_OK;
     int *vars = hl_xmalloc((size_t)m * sizeof *vars);
@@ -49,13 +86,17 @@ int hl_errors_K_closed(hl_alg *K, const hl_alg *images, hl_system *sys, hl_error
     hl_alg_neg(&mD, &mD, ctx);
     for (int i = 0; i < m && st == HL_OK; i++) {
         vars[i] = i; /* q_1..q_N, p_1..p_N are base symbols 0..2N-1 (ham.h) */
-        st = hl_alg_subst(&back[i], &images[i], 1, &vD, &mD, ctx, err);
+        st = hl_alg_subst_bounded(&back[i], reached, &images[i], 1, &vD, &mD, max_terms, ctx,
+                                  err);
+        most = *reached > most ? *reached : most;
     }
     for (int i = 0; i < m && st == HL_OK; i++) {
         st = hl_alg_diff(&d, &images[i], vD, ctx, err);
         if (st == HL_OK)
-            st = hl_alg_subst(&K[i], &d, m, vars, back, ctx, err);
+            st = hl_alg_subst_bounded(&K[i], reached, &d, m, vars, back, max_terms, ctx, err);
+        most = *reached > most ? *reached : most;
     }
+    *reached = most;
     hl_alg_clear(&mD, ctx);
     hl_alg_clear(&d, ctx);
     hl_alg_vec_free(back, m, ctx);

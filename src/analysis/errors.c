@@ -60,13 +60,16 @@ static int errors_from_K(hl_errors *e, const hl_series *psi, const hl_series *li
     for (int i = 0; i < m; i++)
         vars[i] = i < N ? hl_system_var_q(sys, i) : hl_system_var_p(sys, i - N);
     int vD = hl_system_var_D(sys);
-    hl_series *K = series_vec(m, 0, ctx), *Kt = series_vec(m, 0, ctx),
-              *pt = series_vec(m, 0, ctx);
+    hl_series *K = e->K, *Kt = series_vec(m, 0, ctx), *pt = series_vec(m, 0, ctx);
     hl_alg d;
     fmpq_t f;
     hl_alg_init(&d, ctx);
     fmpq_init(f);
-    st = hl_series_scheme_K(K, m, psi, vars, vD, ctx, err); /* K.n = psi.n - 1 >= n */
+    st = hl_series_scheme_K_bounded(K, m, psi, vars, vD, e->budget, ctx, err); /* K.n >= n */
+    if (st != HL_OK) {
+        series_vec_free(e->K, m, ctx);
+        e->K = NULL;
+    }
     for (int k = 2; k <= n && st == HL_OK; k++) {
         for (int i = 0; i < m; i++) {
             hl_series_set(&pt[i], &lie[i], ctx);
@@ -77,7 +80,7 @@ static int errors_from_K(hl_errors *e, const hl_series *psi, const hl_series *li
                 hl_alg_add(&pt[i].c[j], &pt[i].c[j], &d, ctx);
             }
         }
-        st = hl_series_scheme_K(Kt, m, pt, vars, vD, ctx, err);
+        st = hl_series_scheme_K_bounded(Kt, m, pt, vars, vD, e->budget, ctx, err);
         fact(f, k - 1, 0);
         for (int i = 0; i < m && st == HL_OK; i++) {
             hl_alg_sub(&d, &K[i].c[k - 1], &Kt[i].c[k - 1], ctx);
@@ -86,21 +89,29 @@ static int errors_from_K(hl_errors *e, const hl_series *psi, const hl_series *li
     }
     hl_alg_clear(&d, ctx);
     fmpq_clear(f);
-    series_vec_free(K, m, ctx);
     series_vec_free(Kt, m, ctx);
     series_vec_free(pt, m, ctx);
     free(vars);
+    if (st == HL_ELIMIT && e->budget > 0) { /* a check left out, not a failure */
+        e->over_budget = 1;
+        e->checked = e->agree = 0;
+        hl_error_clear(err);
+        st = HL_OK;
+    }
     return st;
 }
 
 static int compute(hl_errors *e, const hl_series *psi, hl_system *sys, int n, int cross,
-                   hl_error *err)
+                   long budget, hl_error *err)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     int N = hl_system_ndof(sys), m = 2 * N, st = HL_OK;
     e->N = N;
     e->n = n;
     e->v = e->vK = NULL;
+    e->K = NULL;
+    e->budget = budget;
+    e->over_budget = 0;
     e->checked = cross;
     e->agree = cross;
     e->disagree_k = 0;
@@ -111,6 +122,7 @@ static int compute(hl_errors *e, const hl_series *psi, hl_system *sys, int n, in
                             "the order must be between 2 and %d, not %d", HL_SERIES_MAX_N - 2, n);
     e->v = hl_alg_vec_new((n + 1) * m, ctx);
     e->vK = hl_alg_vec_new((n + 1) * m, ctx);
+    e->K = cross ? series_vec(m, 0, ctx) : NULL;
     if (!hl_system_has_H(sys))
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "error analysis needs a Hamiltonian");
     for (int i = 0; i < m; i++)
@@ -136,7 +148,7 @@ static int compute(hl_errors *e, const hl_series *psi, hl_system *sys, int n, in
     for (int k = 2; k <= n && st == HL_OK; k++) {
         int zero = 1;
         for (int i = 0; i < m; i++) {
-            if (cross && e->agree && !hl_alg_equal(&e->v[k * m + i], &e->vK[k * m + i], ctx)) {
+            if (e->checked && e->agree && !hl_alg_equal(&e->v[k * m + i], &e->vK[k * m + i], ctx)) {
                 e->agree = 0;
                 e->disagree_k = k;
             }
@@ -156,13 +168,19 @@ static int compute(hl_errors *e, const hl_series *psi, hl_system *sys, int n, in
 int hl_errors_compute(hl_errors *e, const hl_series *psi, hl_system *sys, int n,
                       hl_error *err)
 {
-    return compute(e, psi, sys, n, 1, err);
+    return compute(e, psi, sys, n, 1, 0, err);
+}
+
+int hl_errors_compute_bounded(hl_errors *e, const hl_series *psi, hl_system *sys, int n,
+                              long max_terms, hl_error *err)
+{
+    return compute(e, psi, sys, n, 1, max_terms, err);
 }
 
 int hl_errors_compute_direct(hl_errors *e, const hl_series *psi, hl_system *sys, int n,
                              hl_error *err)
 {
-    return compute(e, psi, sys, n, 0, err);
+    return compute(e, psi, sys, n, 0, 0, err);
 }
 
 void hl_errors_clear(hl_errors *e, hl_system *sys)
@@ -170,5 +188,7 @@ void hl_errors_clear(hl_errors *e, hl_system *sys)
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     hl_alg_vec_free(e->v, (e->n + 1) * 2 * e->N, ctx);
     hl_alg_vec_free(e->vK, (e->n + 1) * 2 * e->N, ctx);
+    series_vec_free(e->K, 2 * e->N, ctx);
     e->v = e->vK = NULL;
+    e->K = NULL;
 }

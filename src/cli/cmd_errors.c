@@ -15,6 +15,14 @@
 #define ERRORS_MAX_ORDER 40
 #define MOD_MAX 5 /* the modified field is computed to f_5 (D^4) at most */
 #define K_PRINT_MAX 200 /* terms of K's closed form printed in text */
+/* Terms an intermediate polynomial of K's closed form may reach: the closed
+ * form is a bonus, and for a scheme that nests radicals (Stormer-Verlet on
+ * Kepler) it swells without end.  The v_k never depend on it. */
+#define K_CLOSED_BUDGET 5000
+/* Terms the coefficients of one composition of the K route (the check of
+ * the v_k) may reach together: past it (Gonzalez on Henon-Heiles, Yoshida on Kepler)
+ * the v_k are computed one way only, and the output says so. */
+#define K_ROUTE_BUDGET 250000
 
 const char cmd_errors_help[] =
     "usage: hamlie errors -H FORMULA (--scheme NAME | --map MAP | --equations EQS)\n"
@@ -137,6 +145,9 @@ typedef struct result {
     int have_F;
     int closed;          /* explicit: map and K in closed form */
     hl_alg *map, *K;
+    char map_omitted[HL_ERROR_MSG_MAX]; /* explicit, but the map not in closed form: why */
+    int have_K;          /* K's closed form within its budget */
+    long K_terms;        /* else the terms it reached */
     hl_series *Ks;       /* K's Taylor series */
     int correct;
     hl_series *cpsi;     /* corrected series */
@@ -175,8 +186,8 @@ static void series_vec_free(hl_series *s, int m, hl_alg_ctx *ctx)
 static int analyse(hl_errors *e, hl_errfield *F, int *have_F, const hl_series *psi,
                    result *R, hl_error *err)
 {
-    int st = hl_errors_compute(e, psi, R->sys, R->n, err);
-    if (st == HL_OK && !e->agree)
+    int st = hl_errors_compute_bounded(e, psi, R->sys, R->n, K_ROUTE_BUDGET, err);
+    if (st == HL_OK && e->checked && !e->agree)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
                             "internal error: v_%d computed two ways (expansion, K(D)) disagree",
                             e->disagree_k);
@@ -202,6 +213,48 @@ static int make_scheme(result *R, const err_opts *r, const cli_opts *o, hl_error
     return st;
 }
 
+/* The size of R->m formulas written out (hl_expr_tree_size): what printing
+ * them would cost. */
+static double printed_size(const hl_alg *v, const result *R)
+{
+    double n = 0;
+    for (int i = 0; i < R->m; i++)
+        n += hl_expr_tree_size(hl_alg_to_expr(&v[i], hl_system_ctx(R->sys),
+                                              hl_system_pool(R->sys)));
+    return n;
+}
+
+/* An explicit scheme's map and K(D) in closed form: bonuses, each left out
+ * (and said why) past its limit. */
+static int closed_forms(result *R, hl_error *err)
+{
+    hl_alg_ctx *ctx = hl_system_ctx(R->sys);
+    R->map = hl_alg_vec_new(R->m, ctx);
+    R->K = hl_alg_vec_new(R->m, ctx);
+    int st = hl_errors_scheme_map(R->map, R->s, err);
+    if (st == HL_ELIMIT) {
+        snprintf(R->map_omitted, sizeof R->map_omitted, "%s", err->msg);
+        hl_error_clear(err);
+        return HL_OK;
+    }
+    if (st != HL_OK)
+        return st;
+    double nodes = printed_size(R->map, R);
+    if (nodes > HL_PRINT_MAX_NODES) { /* a bonus: left out, not the whole output refused */
+        snprintf(R->map_omitted, sizeof R->map_omitted,
+                 "%.0f terms and operators written out (the print limit is %d)", nodes,
+                 HL_PRINT_MAX_NODES);
+        return HL_OK;
+    }
+    R->closed = 1;
+    st = hl_errors_K_closed_bounded(R->K, &R->K_terms, R->map, K_CLOSED_BUDGET, R->sys, err);
+    if (st != HL_OK && st != HL_ELIMIT)
+        return st;
+    R->have_K = st == HL_OK && printed_size(R->K, R) <= HL_PRINT_MAX_NODES;
+    hl_error_clear(err);
+    return HL_OK;
+}
+
 static int compute(result *R, const err_opts *r, const cli_opts *o, hl_error *err)
 {
     hl_system *sys = R->sys;
@@ -214,20 +267,13 @@ static int compute(result *R, const err_opts *r, const cli_opts *o, hl_error *er
         return st;
     if ((st = analyse(&R->e, &R->F, &R->have_F, R->psi, R, err)) != HL_OK)
         return st;
-    R->Ks = series_vec(R->m, ctx);
-    int vars[2 * 64], vD = hl_system_var_D(sys);
-    for (int i = 0; i < R->m; i++)
-        vars[i] = i;
-    if ((st = hl_series_scheme_K(R->Ks, R->m, R->psi, vars, vD, ctx, err)) != HL_OK)
-        return st;
-    if (R->s->all_explicit && R->s->nint == 0) {
-        R->map = hl_alg_vec_new(R->m, ctx);
-        R->K = hl_alg_vec_new(R->m, ctx);
-        if ((st = hl_errors_scheme_map(R->map, R->s, err)) != HL_OK ||
-            (st = hl_errors_K_closed(R->K, R->map, sys, err)) != HL_OK)
-            return st;
-        R->closed = 1;
+    if (R->e.K != NULL) { /* computed by the K route of the check */
+        R->Ks = series_vec(R->m, ctx);
+        for (int i = 0; i < R->m; i++)
+            hl_series_set(&R->Ks[i], &R->e.K[i], ctx);
     }
+    if (R->s->all_explicit && R->s->nint == 0 && (st = closed_forms(R, err)) != HL_OK)
+        return st;
     if (R->have_F && R->invdeg > 0) {
         const hl_alg *v = hl_errors_field(&R->e, R->e.leading);
         if ((st = hl_field_poly_invariants(&R->inv_poly, &R->ninv_poly, &R->inv_poly_app, v,
@@ -524,16 +570,25 @@ static void write_text(hl_buf *out, result *R, const err_opts *r, const cli_opts
     hl_buf_puts(out, "\n");
     if (R->closed)
         put_map(out, "map:", R->map, R, st);
+    else if (R->map_omitted[0])
+        hl_buf_printf(out, "%smap: closed form omitted: %s\n", pre, R->map_omitted);
     for (int k = 2; k <= R->n; k++) {
         hl_buf_printf(out, latex ? "v_{%d} = " : "v_%d = ", k);
         put_field(out, hl_errors_field(&R->e, k), R, st);
         hl_buf_puts(out, "\n");
     }
-    hl_buf_printf(out, "%sv_k computed two ways: agree\n", pre);
+    if (R->e.checked)
+        hl_buf_printf(out, "%sv_k computed two ways: agree\n", pre);
+    else
+        hl_buf_printf(out, "%sv_k computed one way: the check by K(D) omitted (its work "
+                           "passed the budget of %d terms)\n", pre, K_ROUTE_BUDGET);
     put_order(out, &R->e);
     if (R->have_F)
         put_classification(out, &R->e, &R->F, R, st);
-    if (R->closed) {
+    if (R->closed && !R->have_K)
+        hl_buf_printf(out, "K(D) = psi_{-D} o d/dD psi_D: closed form omitted: %ld terms "
+                           "(over the budget of %d)\n", R->K_terms, K_CLOSED_BUDGET);
+    if (R->have_K) {
         long len = 0;
         for (int i = 0; i < R->m; i++)
             len += hl_alg_length(&R->K[i], hl_system_ctx(R->sys));
@@ -549,8 +604,12 @@ static void write_text(hl_buf *out, result *R, const err_opts *r, const cli_opts
             }
         }
     }
-    hl_buf_printf(out, "K(%s) series to O(%s^%d):\n", D, D, R->n);
-    for (int i = 0; i < R->m; i++) {
+    if (R->Ks == NULL)
+        hl_buf_printf(out, "K(%s) series: omitted (its work passed the budget of %d terms)\n", D,
+                      K_ROUTE_BUDGET);
+    else
+        hl_buf_printf(out, "K(%s) series to O(%s^%d):\n", D, D, R->n);
+    for (int i = 0; i < R->m && R->Ks != NULL; i++) {
         char *s = hl_format_series(R->Ks[i].c, R->Ks[i].n - 1, D, 0, hl_system_ctx(R->sys),
                                    hl_system_pool(R->sys), st);
         hl_buf_printf(out, "  K_%s = %s\n", R->names[i], s);
@@ -590,6 +649,21 @@ static void json_field(hl_json *j, const char *key, const hl_alg *v, result *R)
                          HL_STYLE_SYMPY);
 }
 
+/* K's D^0..D^(N-1) coefficients, one field each */
+static void json_K_coefficients(hl_json *j, result *R)
+{
+    hl_alg_ctx *ctx = hl_system_ctx(R->sys);
+    hl_json_array_begin(j);
+    hl_alg *c = hl_alg_vec_new(R->m, ctx);
+    for (int k = 0; k < R->n; k++) {
+        for (int i = 0; i < R->m; i++)
+            hl_alg_set(&c[i], &R->Ks[i].c[k], ctx);
+        hl_json_vector_field(j, R->m, R->names, c, ctx, hl_system_pool(R->sys), HL_STYLE_SYMPY);
+    }
+    hl_alg_vec_free(c, R->m, ctx);
+    hl_json_array_end(j);
+}
+
 static void json_analysis(hl_json *j, const hl_errors *e, const hl_errfield *F, int have_F,
                           result *R)
 {
@@ -602,7 +676,16 @@ static void json_analysis(hl_json *j, const hl_errors *e, const hl_errfield *F, 
         hl_json_object_end(j);
     }
     hl_json_array_end(j);
-    hl_json_kv_bool(j, "two_ways_agree", e->agree);
+    if (e->over_budget) {
+        hl_json_key(j, "two_ways_agree");
+        hl_json_null(j);
+        hl_json_key(j, "check_omitted");
+        hl_json_object_begin(j);
+        hl_json_kv_string(j, "reason", "size_budget");
+        hl_json_kv_int(j, "budget", e->budget);
+        hl_json_object_end(j);
+    } else
+        hl_json_kv_bool(j, "two_ways_agree", e->agree);
     hl_json_kv_int(j, "order", e->order);
     hl_json_kv_bool(j, "exact_to_order_computed", e->leading == 0);
     hl_json_key(j, "leading");
@@ -656,20 +739,26 @@ static void write_json(hl_buf *out, result *R, const err_opts *r, const cli_opts
     hl_json_kv_int(&j, "order_computed", R->n);
     if (R->closed)
         json_field(&j, "map", R->map, R);
+    else if (R->map_omitted[0])
+        hl_json_kv_string(&j, "map_omitted", R->map_omitted);
     json_analysis(&j, &R->e, &R->F, R->have_F, R);
-    if (R->closed)
+    if (R->have_K)
         json_field(&j, "K", R->K, R);
-    hl_json_key(&j, "K_coefficients");
-    hl_json_array_begin(&j);
-    hl_alg *c = hl_alg_vec_new(R->m, hl_system_ctx(R->sys));
-    for (int k = 0; k < R->n; k++) {
-        for (int i = 0; i < R->m; i++)
-            hl_alg_set(&c[i], &R->Ks[i].c[k], hl_system_ctx(R->sys));
-        hl_json_vector_field(&j, R->m, R->names, c, hl_system_ctx(R->sys),
-                             hl_system_pool(R->sys), HL_STYLE_SYMPY);
+    else if (R->closed) {
+        hl_json_key(&j, "K");
+        hl_json_null(&j);
+        hl_json_key(&j, "K_omitted");
+        hl_json_object_begin(&j);
+        hl_json_kv_string(&j, "reason", "size_budget");
+        hl_json_kv_int(&j, "terms", R->K_terms);
+        hl_json_kv_int(&j, "budget", K_CLOSED_BUDGET);
+        hl_json_object_end(&j);
     }
-    hl_alg_vec_free(c, R->m, hl_system_ctx(R->sys));
-    hl_json_array_end(&j);
+    hl_json_key(&j, "K_coefficients");
+    if (R->Ks == NULL)
+        hl_json_null(&j);
+    else
+        json_K_coefficients(&j, R);
     hl_json_key(&j, "invariants");
     if (R->have_F && R->invdeg > 0 && R->inv_poly_app) {
         hl_json_object_begin(&j);

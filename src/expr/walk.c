@@ -93,6 +93,29 @@ int hl_expr_has_symbol(const hl_expr *e, const char *name)
     return hl_expr_postorder(&e, 1, is_symbol, (void *)name);
 }
 
+/* ---- divisors ----------------------------------------------------------------- */
+
+typedef struct div_walk {
+    int (*is_bad)(const hl_expr *d, void *arg);
+    void *arg;
+} div_walk;
+
+static int bad_divisor(void *arg, const hl_expr *e) /* 1 stops the walk */
+{
+    div_walk *w = arg;
+    if (e->kind == HL_DIV)
+        return w->is_bad(e->b, w->arg);
+    if (e->kind == HL_POW && (e->b->kind != HL_NUM || fmpq_sgn(e->b->num) < 0))
+        return w->is_bad(e->a, w->arg);
+    return 0;
+}
+
+int hl_expr_divides_by(const hl_expr *e, int (*is_bad)(const hl_expr *d, void *arg), void *arg)
+{
+    div_walk w = {.is_bad = is_bad, .arg = arg};
+    return hl_expr_postorder(&e, 1, bad_divisor, &w);
+}
+
 /* ---- cost --------------------------------------------------------------------- */
 
 static int node_cost(void *total, const hl_expr *e)

@@ -193,7 +193,7 @@ static void mark_explicit(hl_scheme *s)
 /* e with the integrals replaced by their integrand at s = 0 (the value at
  * D = 0 of an integrand that depends on s only through s*O(D)), D by 0 and
  * the unknowns known at D = 0 by their values. */
-static const hl_expr *at_zero(const hl_scheme *s, hl_pool *pool, const hl_expr *e)
+const hl_expr *scheme_at_zero(const hl_scheme *s, hl_pool *pool, const hl_expr *e)
 {
     int n = s->nint + s->m + 2, k = 0;
     const char **names = hl_xmalloc((size_t)n * sizeof *names);
@@ -243,7 +243,7 @@ static int derive_z0(hl_scheme *s, hl_pool *pool, hl_error *err)
             int u = s->defines[i];
             if (u < 0 || s->z0[u] != NULL)
                 continue;
-            const hl_expr *e = at_zero(s, pool, s->rhs[i]);
+            const hl_expr *e = scheme_at_zero(s, pool, s->rhs[i]);
             hl_error e2;
             if (hl_alg_from_expr(&a, e, aux, &e2) != HL_OK) {
                 why = e2;

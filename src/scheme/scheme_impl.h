@@ -27,6 +27,10 @@ const hl_expr *sb_integral(sb *b, const hl_expr *body);
 int sb_finish(hl_scheme **out, sb *b, hl_error *err);
 void sb_abort(sb *b);
 
+/* e with the integrals replaced by their integrand at s = 0, D by 0 and the
+ * unknowns known at D = 0 by their values (build.c). */
+const hl_expr *scheme_at_zero(const hl_scheme *s, hl_pool *pool, const hl_expr *e);
+
 /* Upper-case display name of the image of a phase variable: malloc'd. */
 char *scheme_upper(const char *v);
 

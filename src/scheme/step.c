@@ -5,7 +5,6 @@
 #include <string.h>
 
 #include "base/buf.h"
-#include "expr/memo.h"
 #include "scheme/scheme_impl.h"
 
 struct hl_scheme_stepper {
@@ -163,41 +162,30 @@ static int has_unknown(const hl_expr *e, const hl_scheme *s)
     return 0;
 }
 
-/* Does e divide by something that depends on an unknown?  ((P^2 - p^2)/(P - p)
- * is 0/0 at P = p, and loses digits near it.) */
-static int divides_by_unknown(const hl_expr *e, const hl_scheme *s, hl_memo *seen)
+/* Does the divisor d depend on an unknown and vanish at D = 0 (every
+ * unknown at its value there)?  Then a quotient by it is 0/0 where the
+ * unknowns meet the current point ((P^2 - p^2)/(P - p)), and loses digits
+ * near it.  A divisor such as Kepler's |q + D a k|^3 in a Runge-Kutta stage
+ * does not vanish there: its equation is kept as written, as its canonical
+ * form over the stages swells (gauss3 on 3-D Kepler: over a minute).  A
+ * divisor that cannot be read exactly counts as vanishing. */
+static int vanishes_at_zero(const hl_expr *d, void *arg)
 {
-    hl_memo_val *v = hl_memo_get(seen, e);
-    if (v)
-        return v->i;
-    int r = 0;
-    switch (e->kind) {
-    case HL_DIV:
-        r = has_unknown(e->b, s) || divides_by_unknown(e->a, s, seen) ||
-            divides_by_unknown(e->b, s, seen);
-        break;
-    case HL_POW:
-        r = (e->b->kind != HL_NUM || fmpq_sgn(e->b->num) < 0) && has_unknown(e->a, s);
-        r = r || divides_by_unknown(e->a, s, seen) || divides_by_unknown(e->b, s, seen);
-        break;
-    case HL_ADD:
-    case HL_SUB:
-    case HL_MUL:
-        r = divides_by_unknown(e->a, s, seen) || divides_by_unknown(e->b, s, seen);
-        break;
-    case HL_NEG:
-    case HL_FUN: /* atan2(y, x) divides by nothing, but its arguments may */
-        r = divides_by_unknown(e->a, s, seen) || (e->b && divides_by_unknown(e->b, s, seen));
-        break;
-    default:
-        break;
-    }
-    hl_memo_put(seen, e)->i = r;
+    const hl_scheme *s = arg;
+    if (!has_unknown(d, s))
+        return 0;
+    hl_alg_ctx *ctx = hl_system_ctx(s->sys);
+    hl_alg a;
+    hl_alg_init(&a, ctx);
+    const hl_expr *d0 = scheme_at_zero(s, hl_system_pool(s->sys), d);
+    int r = has_unknown(d0, s) || hl_alg_from_expr(&a, d0, ctx, NULL) != HL_OK ||
+            hl_alg_is_zero(&a, ctx);
+    hl_alg_clear(&a, ctx);
     return r;
 }
 
-/* Equations that divide by an expression in the unknowns (or all of them)
- * are replaced by their exact canonical form (alg.h), which cancels common
+/* Equations that divide by an expression in the unknowns vanishing at
+ * D = 0 (vanishes_at_zero), or all of them, are replaced by their exact canonical form (alg.h), which cancels common
  * factors: the paper's (P^2 - p^2)/(2(P - p)) becomes (P + p)/2, regular
  * where P = p.  The others are kept as written (expanding them would only
  * cost). */
@@ -207,10 +195,8 @@ static void simplify(const hl_expr **F, int nF, int all, const hl_scheme *s, hl_
     int nb = hl_alg_ctx_nbase(ctx);
     hl_alg_ctx *aux = NULL;
     hl_alg a;
-    hl_memo seen;
-    hl_memo_init(&seen);
     for (int i = 0; i < nF; i++) {
-        if (!all && !divides_by_unknown(F[i], s, &seen))
+        if (!all && !hl_expr_divides_by(F[i], vanishes_at_zero, (void *)s))
             continue;
         if (aux == NULL) {
             const char **names = hl_xmalloc((size_t)(nb + s->m) * sizeof *names);
@@ -229,7 +215,6 @@ static void simplify(const hl_expr **F, int nF, int all, const hl_scheme *s, hl_
         hl_alg_clear(&a, aux);
         hl_alg_ctx_free(aux);
     }
-    hl_memo_clear(&seen);
 }
 
 /* e with the eliminated unknowns replaced by their values. */

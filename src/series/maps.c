@@ -71,8 +71,19 @@ int hl_series_lie(hl_series *r, const hl_alg *phi, const hl_alg *H, int ndof, co
     return status;
 }
 
+static int compose(hl_series *r, int m, const hl_series *A, int nvars, const int *vars,
+                   const hl_series *B, int var_D, long max_terms, hl_alg_ctx *ctx,
+                   hl_error *err);
+
 int hl_series_compose(hl_series *r, int m, const hl_series *A, int nvars, const int *vars,
                       const hl_series *B, int var_D, hl_alg_ctx *ctx, hl_error *err)
+{
+    return compose(r, m, A, nvars, vars, B, var_D, 0, ctx, err);
+}
+
+static int compose(hl_series *r, int m, const hl_series *A, int nvars, const int *vars,
+                   const hl_series *B, int var_D, long max_terms, hl_alg_ctx *ctx,
+                   hl_error *err)
 {
     int nb = hl_alg_ctx_nbase(ctx);
     if (var_D < 0 || var_D >= nb)
@@ -103,8 +114,10 @@ int hl_series_compose(hl_series *r, int m, const hl_series *A, int nvars, const 
     series_prog *prog = NULL;
     int status =
         series_prog_compile(&prog, m * n, roots, t.nsym, (const char *const *)t.names, n, ctx, err);
-    if (status == HL_OK)
+    if (status == HL_OK) {
+        series_prog_set_budget(prog, max_terms);
         status = series_prog_run(prog, n, t.vals, ctx, err);
+    }
     for (int i = 0; status == HL_OK && i < m; i++) {
         hl_series_zero(&r[i], n, ctx);
         for (int k = 0; k < n; k++) {
@@ -123,6 +136,12 @@ int hl_series_compose(hl_series *r, int m, const hl_series *A, int nvars, const 
 int hl_series_scheme_K(hl_series *K, int m, const hl_series *psi, const int *vars, int var_D,
                        hl_alg_ctx *ctx, hl_error *err)
 {
+    return hl_series_scheme_K_bounded(K, m, psi, vars, var_D, 0, ctx, err);
+}
+
+int hl_series_scheme_K_bounded(hl_series *K, int m, const hl_series *psi, const int *vars,
+                               int var_D, long max_terms, hl_alg_ctx *ctx, hl_error *err)
+{
     hl_series *dpsi = hl_xmalloc((size_t)(m > 0 ? m : 1) * sizeof *dpsi);
     hl_series *back = hl_xmalloc((size_t)(m > 0 ? m : 1) * sizeof *back);
     for (int i = 0; i < m; i++) {
@@ -131,7 +150,7 @@ int hl_series_scheme_K(hl_series *K, int m, const hl_series *psi, const int *var
         hl_series_derivative(&dpsi[i], &psi[i], ctx);
         hl_series_reflect(&back[i], &psi[i], ctx);
     }
-    int status = hl_series_compose(K, m, dpsi, m, vars, back, var_D, ctx, err);
+    int status = compose(K, m, dpsi, m, vars, back, var_D, max_terms, ctx, err);
     for (int i = 0; i < m; i++) {
         hl_series_clear(&dpsi[i], ctx);
         hl_series_clear(&back[i], ctx);

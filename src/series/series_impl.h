@@ -45,5 +45,9 @@ int series_prog_step(series_prog *p, int k, const hl_series *inputs, hl_alg_ctx 
 int series_prog_run(series_prog *p, int n, const hl_series *inputs, hl_alg_ctx *ctx,
                     hl_error *err); /* steps 0..n-1 */
 const hl_series *series_prog_root(const series_prog *p, int i);
+/* Steps refuse (HL_ELIMIT) once the nodes' coefficients, all together,
+ * pass max_terms terms (numerators and denominators; 0: no limit, the
+ * default). */
+void series_prog_set_budget(series_prog *p, long max_terms);
 
 #endif

@@ -59,6 +59,8 @@ struct series_prog {
     int *root;
     int nroot;
     int n; /* coefficients allocated */
+    long max_terms; /* the budget of all coefficients together (0: none) */
+    long terms;     /* their terms so far */
 };
 
 /* ---- nodes ----------------------------------------------------------------- */
@@ -776,9 +778,18 @@ int series_prog_step(series_prog *p, int k, const hl_series *inputs, hl_alg_ctx 
         int status = step_node(p, i, k, inputs, ctx, err);
         if (status != HL_OK)
             return status;
+        if (p->max_terms == 0)
+            continue;
+        p->terms += hl_alg_length(&p->node[i].v.c[k], ctx);
+        if (p->terms > p->max_terms)
+            return hl_error_set(err, HL_ELIMIT, NULL, -1, 0,
+                                "the coefficients passed the budget of %ld terms",
+                                p->max_terms);
     }
     return HL_OK;
 }
+
+void series_prog_set_budget(series_prog *p, long max_terms) { p->max_terms = max_terms; }
 
 int series_prog_run(series_prog *p, int n, const hl_series *inputs, hl_alg_ctx *ctx, hl_error *err)
 {
