@@ -181,7 +181,8 @@ def check_map_canonical(ctx, s, label, scheme, images, point, D=0.1):
     n = len(s["q"])
     J = mpmath.zeros(2 * n, 2 * n)
     for i, v in enumerate(z):
-        img = sympy.sympify(images[v], locals=loc).subs(loc["D"], D)
+        img = sympy.sympify(images[v], locals=loc).subs(loc["D"],
+                                                         sympy.Rational(D))
         for j, w in enumerate(z):
             J[i, j] = truth.at(sympy.diff(img, loc[w]), s, point)
     defect = omega_defect(J, n)
@@ -352,13 +353,15 @@ def finite(x):
 REG_N2 = [("itoh-abe", "px^2/2 + py^2/2 + y*px + x^2/2",
            "x=-0.4,y=0.7,px=0.7,py=-0.15"),
           ("yoshida4", "p^2/2 + q^2*p", "q=0.3,p=0.2"),
-          ("yoshida4", "p^2/2 + q*p", "q=0.3,p=0.2")]
+          ("yoshida4", "p^2/2 + q*p", "q=0.3,p=0.2"),
+          ("avf", "p^2/2 + p*q^2", "q=0.4907,p=0.7674"),  # crashed (SIGSEGV)
+          ("itoh-abe", "p^2/2 + p*q^2", "q=0.4907,p=0.7674")]
 KEPLER = "(px^2+py^2)/2 - 1/sqrt(x^2+y^2)"
 NEAR_COLLISION = "x=-0.85292,y=0.741467,px=0.285809,py=-0.46234"
 
 
 def check_regressions(ctx):
-    """N2: a scheme that applies to any H runs on these (its error against
+    """N2: a scheme that applies to any H runs on these (some crashed) (its error against
     the Taylor integrator after one step of 0.1 is O(dt^2) at most). N3: a
     scheme that claims to preserve H either does, or stops with exit 2."""
     for scheme, H, init in REG_N2:

@@ -41,8 +41,13 @@ class Context:
         self.counts = {"pass": 0, "fail": 0, "xfail": 0, "xpass": 0, "n/a": 0}
         self.kinds = {}
         self.crashes = self.hangs = 0
+        self.cases = 0
         self.failures, self.xpasses, self.xfails = [], [], []
         self.deadline = time.monotonic() + 60 * opts.minutes if opts.minutes else None
+
+    def count_case(self):
+        with self.lock:
+            self.cases += 1
 
     def out_of_time(self):
         return self.deadline is not None and time.monotonic() > self.deadline
@@ -129,6 +134,7 @@ def system_cases(ctx, index, s, catalog):
     for label, point in pts:
         if ctx.out_of_time():
             return
+        ctx.count_case()
         zd = checks.check_taylor(ctx, s, label, point)
         if len(s["q"]) == 1 and ("even_p" in s["tags"]):
             checks.check_exact(ctx, s, label, point, zd)
@@ -175,6 +181,7 @@ def run_random(ctx, count, seed):
     for i in range(count):
         if ctx.out_of_time():
             return i
+        ctx.count_case()
         randomh.case(ctx, rng, i)
     return count
 
@@ -229,13 +236,14 @@ def main():
     def zoo_task(item):
         system_cases(ctx, *item, catalog)
 
-    with ThreadPoolExecutor(max_workers=opts.jobs) as pool:
-        futures = []
+    # the random Hamiltonians run beside the zoo (one more worker), so that
+    # a time budget (--minutes) is shared between them
+    with ThreadPoolExecutor(max_workers=opts.jobs + 1) as pool:
+        futures = [pool.submit(
+            lambda: random_done.__setitem__(0, run_random(ctx, opts.random, opts.seed)))]
+        futures.append(pool.submit(checks.check_regressions, ctx))
         if not opts.no_zoo:
             futures += [pool.submit(zoo_task, (i, s)) for i, s in enumerate(zoo)]
-        futures.append(pool.submit(checks.check_regressions, ctx))
-        futures.append(pool.submit(
-            lambda: random_done.__setitem__(0, run_random(ctx, opts.random, opts.seed))))
         for f in futures:
             f.result()
     report(ctx, zoo if not opts.no_zoo else [], random_done[0],
@@ -253,8 +261,9 @@ def report(ctx, zoo, randoms, seconds):
     for kind in sorted(ctx.kinds):
         print("  %-32s %5d %5d" % (kind, *ctx.kinds[kind]))
     dofs = sorted({len(s["q"]) for s in zoo})
-    print("\nzoo systems: %d (dof %s); random Hamiltonians: %d; calls: %d; %.0f s"
-          % (len(zoo), dofs, randoms, ctx.hamlie.calls, seconds))
+    print("\nzoo systems: %d (dof %s); random Hamiltonians: %d; cases (initial "
+          "points and random H): %d; calls: %d; %.0f s"
+          % (len(zoo), dofs, randoms, ctx.cases, ctx.hamlie.calls, seconds))
     print("cross-checks: %d passed, %d failed, %d expected failures (known "
           "defects), %d known defects passing, %d not measurable"
           % (c["pass"], c["fail"], c["xfail"], c["xpass"], c["n/a"]))

@@ -43,9 +43,11 @@ def lie_coefficients(s, var, order):
 
 
 def at(expr, s, point):
-    """A SymPy expression at a point, in mpmath (30 digits)."""
+    """A SymPy expression at a point, to 30 correct digits: the point's
+    doubles as exact rationals, so that evalf raises its precision where
+    terms cancel (the Yoshida map's coefficients cancel to 1e-8)."""
     loc = symbols_of(s)
-    vals = {loc[k]: sympy.Float(repr(float(v)), 40) for k, v in point.items()}
+    vals = {loc[k]: sympy.Rational(float(v)) for k, v in point.items()}
     return mpmath.mpf(sympy.N(expr.subs(vals), 30))
 
 
