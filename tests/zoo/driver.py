@@ -54,7 +54,7 @@ class Context:
 
     def record(self, kind, s, label, scheme, passed, detail, outcome):
         system = s["name"] if s else "-"
-        defect = known.defect_of(kind, system, label, scheme or "-")
+        defect = known.defect_of(kind, system, label, scheme or "-", detail)
         with self.lock:
             tally = self.kinds.setdefault(kind, [0, 0])
             if passed is None:

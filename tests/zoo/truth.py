@@ -45,10 +45,11 @@ def lie_coefficients(s, var, order):
 def at(expr, s, point):
     """A SymPy expression at a point, to 30 correct digits: the point's
     doubles as exact rationals, so that evalf raises its precision where
-    terms cancel (the Yoshida map's coefficients cancel to 1e-8)."""
+    terms cancel (the Yoshida map's coefficients cancel to 1e-8, its v_5's
+    terms of 1e107 to 1e2: evalf's default of 100 extra digits gave 0e+6)."""
     loc = symbols_of(s)
     vals = {loc[k]: sympy.Rational(float(v)) for k, v in point.items()}
-    return mpmath.mpf(sympy.N(expr.subs(vals), 30))
+    return mpmath.mpf(sympy.N(expr.subs(vals), 30, maxn=4000))
 
 
 def linear_flow(s, point, t):

@@ -136,8 +136,8 @@ ZOO = [
          "-1/sqrt(e + q^2) + p*p/2", "q", "p",
          [("equilibrium", pt(q=0, p=0)), ("bottom", pt(q=0, p=0.8)),
           ("turning", pt(q=1, p=0)), ("p<0", pt(q=-0.5, p=-0.3))],
-         (-1.5, 1.5), t=4, params={"e": 0.5},
-         tags={"separable", "even_p"}),
+         {"q": (-1.5, 1.5), "p": (-0.5, 0.5)},  # E < 0: bound orbits
+         t=4, params={"e": 0.5}, tags={"separable", "even_p"}),
     sys_("calogero-1", "p^2/2 + q^2/2 + c/q^2", "c/q^2 + (q^2 + p^2)/2",
          "q", "p",
          [("equilibrium", pt(q=1.189207115002721, p=0)),  # q^4 = 2c
