@@ -16,4 +16,5 @@ if [ ! -x "$build/hamlie" ]; then
 fi
 echo "soak: $minutes minutes, seed $seed, $build/hamlie"
 exec python3 tests/zoo/driver.py "$build/hamlie" --seed "$seed" \
-  --minutes "$minutes" --points 6 --random 1000000 --all-schemes --ode
+  --minutes "$minutes" --points 6 --random 1000000 --all-schemes --ode \
+  --run-known-hangs
