@@ -234,12 +234,15 @@ static const hl_expr *subst_known(const hl_expr *e, const hl_expr **val, const h
 
 /* The unknown equation i gives explicitly, and its value: U_u = rhs free of
  * U_u, or an equation affine in one unknown with a coefficient free of the
- * unknowns ((Q - q)/D = p gives Q = q + p D).  -1 if none. */
+ * unknowns ((Q - q)/D = p gives Q = q + p D).  -1 if none.  An unknown
+ * another equation has given already is not given twice: equation i then
+ * stays an equation in the others (else one unknown is counted twice and
+ * another is neither kept nor given: a NULL value, or its name left over). */
 static int solvable(const hl_expr **value, int i, const hl_expr **val, const hl_scheme *s,
                     const hl_expr **lhs, const hl_expr **rhs, hl_pool *pool)
 {
     int u = s->defines[i];
-    if (u >= 0) {
+    if (u >= 0 && val[u] == NULL) {
         const hl_expr *r = subst_known(rhs[i], val, s, pool);
         if (!hl_expr_has_symbol(r, s->unknown[u])) {
             *value = r;
