@@ -8,7 +8,7 @@
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     char *text = fuzz_string(data, size);
-    hl_system_spec spec = {"p^2/2 - cos(q)", NULL, NULL, NULL};
+    hl_system_spec spec = {"p^2/2 - cos(q)", NULL, NULL, NULL, NULL};
     hl_system *sys;
     hl_error err;
     if (hl_system_new(&sys, &spec, &err) != HL_OK)

@@ -12,7 +12,7 @@
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     char *init = fuzz_string(data, size);
-    hl_system_spec spec = {"(px^2 + py^2)/2 + k*x^2*y", NULL, "k=1/3", NULL};
+    hl_system_spec spec = {"(px^2 + py^2)/2 + k*x^2*y", NULL, "k=1/3", NULL, NULL};
     hl_system *sys;
     hl_error err;
     if (hl_system_new(&sys, &spec, &err) != HL_OK)

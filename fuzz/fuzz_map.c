@@ -9,7 +9,7 @@
 
 static void read_map(const char *H, const char *map)
 {
-    hl_system_spec spec = {H, NULL, NULL, NULL};
+    hl_system_spec spec = {H, NULL, NULL, NULL, NULL};
     hl_system *sys;
     hl_error err;
     if (hl_system_new(&sys, &spec, &err) != HL_OK)

@@ -6,7 +6,7 @@
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     char *params = fuzz_string(data, size);
-    hl_system_spec spec = {"(p^2 + omega^2*x^2)/2 + k*x^4", NULL, params, NULL};
+    hl_system_spec spec = {"(p^2 + omega^2*x^2)/2 + k*x^4", NULL, params, NULL, NULL};
     hl_system *sys = NULL;
     hl_error err;
     fuzz_check_error(hl_system_new(&sys, &spec, &err), &err, params);

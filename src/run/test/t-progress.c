@@ -175,7 +175,7 @@ static int lie_stop(double done, double total, void *arg)
 
 static void lie_stopped(void)
 {
-    hl_system_spec spec = {PENDULUM, NULL, NULL, NULL};
+    hl_system_spec spec = {PENDULUM, NULL, NULL, NULL, NULL};
     hl_system *sys;
     hl_error err;
     if (hl_system_new(&sys, &spec, &err) != HL_OK)
