@@ -29,6 +29,8 @@ struct hl_scheme_stepper {
     hl_tape *energy;   /* z -> H and its rounding scale (energy_check), for
                         * a scheme that claims to preserve H; else NULL */
     const char *claims; /* that scheme's name (the catalog's) */
+    double *at, at_energy[2]; /* the last point checked and its H, scale: the
+                               * next step starts there */
 };
 
 void hl_scheme_stepper_free(hl_scheme_stepper *st)
@@ -42,7 +44,7 @@ void hl_scheme_stepper_free(hl_scheme_stepper *st)
     hl_tape_free(st->energy);
     hl_newton_free(st->nw);
     hl_scheme_stepper_free(st->fallback);
-    free(st->in), free(st->out), free(st->U), free(st->bound);
+    free(st->in), free(st->out), free(st->U), free(st->bound), free(st->at);
     free(st);
 }
 
@@ -481,6 +483,8 @@ static int energy_tape(hl_scheme_stepper *st, const hl_scheme *s, const char **i
     }
     const hl_expr *outs[2] = {H, scale};
     int rc = hl_tape_new(&st->energy, outs, 2, inputs, 2 * s->N, err);
+    st->at = hl_xcalloc((size_t)(2 * s->N), sizeof *st->at);
+    st->at[0] = NAN; /* no point yet */
     free(terms);
     return rc;
 }
@@ -629,9 +633,14 @@ static int energy_check(hl_scheme_stepper *st, const double *z, const double *Z,
 {
     if (st->energy == NULL)
         return HL_OK;
+    size_t n = (size_t)(2 * st->N) * sizeof *z;
     double a[2], b[2];
-    hl_tape_eval_d(a, z, st->energy);
+    if (memcmp(z, st->at, n) == 0)
+        memcpy(a, st->at_energy, sizeof a);
+    else
+        hl_tape_eval_d(a, z, st->energy);
     hl_tape_eval_d(b, Z, st->energy);
+    memcpy(st->at, Z, n), memcpy(st->at_energy, b, sizeof b);
     double dH = fabs(b[0] - a[0]), tol = ENERGY_ULPS * DBL_EPSILON * fmax(a[1], b[1]);
     if (dH <= tol)
         return HL_OK;
