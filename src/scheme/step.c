@@ -29,6 +29,7 @@ struct hl_scheme_stepper {
     hl_tape *energy;   /* z -> H and its rounding scale (energy_check), for
                         * a scheme that claims to preserve H; else NULL */
     const char *claims; /* that scheme's name (the catalog's) */
+    int integrals;      /* its equations have integrals (by numeric rules) */
     double *at, at_energy[2]; /* the last point checked and its H, scale: the
                                * next step starts there */
 };
@@ -466,7 +467,7 @@ static int energy_tape(hl_scheme_stepper *st, const hl_scheme *s, const char **i
         H == NULL)
         return HL_OK;
     hl_pool *pool = hl_system_pool(s->sys);
-    st->claims = info->name;
+    st->claims = info->name, st->integrals = s->nint > 0;
     int n = 0;
     sum_terms(NULL, &n, H);
     const hl_expr **terms = hl_xmalloc((size_t)(n + 2 * s->N) * sizeof *terms);
@@ -647,9 +648,11 @@ static int energy_check(hl_scheme_stepper *st, const double *z, const double *Z,
     return hl_error_set(err, HL_ENOCONV, NULL, -1, 0,
                         "step %ld (t = %.17g, D = %g): the scheme '%s' preserves H, but this step "
                         "changes it from %.17g to %.17g (by %.3g, rounding allows %.3g): its "
-                        "equations are not solved to rounding here (an integral whose Gauss "
-                        "rule is not accurate near a singularity of H?)",
-                        st->steps + 1, t, D, st->claims, a[0], b[0], dH, tol);
+                        "equations are not solved to rounding here%s",
+                        st->steps + 1, t, D, st->claims, a[0], b[0], dH, tol,
+                        st->ncheck > 0 || st->integrals
+                            ? " (an integral by a rule not accurate near a singularity of H?)"
+                            : "");
 }
 
 int hl_scheme_step(hl_scheme_stepper *st, double *z, double D, double t, hl_error *err)
