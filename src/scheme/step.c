@@ -26,6 +26,12 @@ struct hl_scheme_stepper {
     long fallbacks;    /* steps it took since the restart */
     int use_fallback;  /* for every step: it took most of them */
     long jit_steps;    /* hl_scheme_stepper_jit's run length, for it too */
+    hl_tape *energy;   /* z -> H and its rounding scale (energy_check), for
+                        * a scheme that claims to preserve H; else NULL */
+    const char *claims; /* that scheme's name (the catalog's) */
+    int integrals;      /* its equations have integrals (by numeric rules) */
+    double *at, at_energy[2]; /* the last point checked and its H, scale: the
+                               * next step starts there */
 };
 
 void hl_scheme_stepper_free(hl_scheme_stepper *st)
@@ -36,9 +42,10 @@ void hl_scheme_stepper_free(hl_scheme_stepper *st)
     hl_tape_free(st->jac);
     hl_tape_free(st->start);
     hl_tape_free(st->after);
+    hl_tape_free(st->energy);
     hl_newton_free(st->nw);
     hl_scheme_stepper_free(st->fallback);
-    free(st->in), free(st->out), free(st->U), free(st->bound);
+    free(st->in), free(st->out), free(st->U), free(st->bound), free(st->at);
     free(st);
 }
 
@@ -430,6 +437,59 @@ int hl_scheme_step_exprs(const hl_expr **Z, const hl_scheme *s, hl_error *err)
     return st;
 }
 
+/* e's terms as a sum (a - b: a and b, as only their sizes count); with
+ * terms NULL, n counts them. */
+static void sum_terms(const hl_expr **terms, int *n, const hl_expr *e)
+{
+    if (e->kind == HL_ADD || e->kind == HL_SUB) {
+        sum_terms(terms, n, e->a);
+        sum_terms(terms, n, e->b);
+    } else if (e->kind == HL_NEG)
+        sum_terms(terms, n, e->a);
+    else if (terms != NULL)
+        terms[(*n)++] = e;
+    else
+        (*n)++;
+}
+
+/* The tape z -> H, and the size of the rounding in a difference of two
+ * values of H: the sum of |each term of H| and of |z_j dH/dz_j| (a
+ * relative change of z_j by one ulp moves H by about its |z_j dH/dz_j|;
+ * the terms' sizes cover their cancellation, as -1/r + p^2/2 near
+ * Kepler's collision).  Only for a catalog scheme that claims to preserve
+ * H: its step is checked against that claim (energy_check). */
+static int energy_tape(hl_scheme_stepper *st, const hl_scheme *s, const char **inputs,
+                       hl_error *err)
+{
+    const hl_scheme_info *info = hl_scheme_lookup(s->name);
+    const hl_expr *H = hl_system_H_expr(s->sys);
+    if (info == NULL || !(info->flags & HL_SCHEME_PRESERVES_H) || !hl_system_has_H(s->sys) ||
+        H == NULL)
+        return HL_OK;
+    hl_pool *pool = hl_system_pool(s->sys);
+    st->claims = info->name, st->integrals = s->nint > 0;
+    int n = 0;
+    sum_terms(NULL, &n, H);
+    const hl_expr **terms = hl_xmalloc((size_t)(n + 2 * s->N) * sizeof *terms);
+    n = 0;
+    sum_terms(terms, &n, H);
+    for (int j = 0; j < 2 * s->N; j++) {
+        const hl_expr *v = hl_sym(pool, inputs[j]);
+        terms[n++] = hl_mul(pool, v, scheme_dH(s->sys, j % s->N, j >= s->N));
+    }
+    const hl_expr *scale = NULL;
+    for (int i = 0; i < n; i++) {
+        const hl_expr *a = hl_call(pool, HL_SQRT, hl_mul(pool, terms[i], terms[i]));
+        scale = scale ? hl_add(pool, scale, a) : a;
+    }
+    const hl_expr *outs[2] = {H, scale};
+    int rc = hl_tape_new(&st->energy, outs, 2, inputs, 2 * s->N, err);
+    st->at = hl_xcalloc((size_t)(2 * s->N), sizeof *st->at);
+    st->at[0] = NAN; /* no point yet */
+    free(terms);
+    return rc;
+}
+
 /* The stepper with Taylor rules for the integrals where taylor_ok and they
  * are cheaper (their checks in st->after), else Gauss rules. */
 static int stepper_build(hl_scheme_stepper **out, const hl_scheme *s, int taylor_ok,
@@ -456,6 +516,8 @@ static int stepper_build(hl_scheme_stepper **out, const hl_scheme *s, int taylor
     quadrature(lhs, rhs, s, pool, taylor_ok && !s->all_explicit, chk, st->bound, &st->ncheck);
     int rc = s->all_explicit ? compile_explicit(st, s, rhs, inputs, pool, err)
                              : compile_newton(st, s, lhs, rhs, chk, inputs, pool, err);
+    if (rc == HL_OK)
+        rc = energy_tape(st, s, inputs, err);
     free(inputs), free(lhs), free(rhs), free(chk);
     if (rc != HL_OK) {
         hl_error_prefix(err, "compiling the scheme '%s'", s->name);
@@ -558,6 +620,41 @@ static int fallback_step(hl_scheme_stepper *st, double *z, double D, double t, h
     return HL_OK;
 }
 
+/* Rounding error allowed in H(Z) - H(z), in units of the scale of
+ * energy_tape: a step that solves a discrete gradient's equations to
+ * rounding changes H by a few such units. */
+#define ENERGY_ULPS 256
+
+/* A scheme that claims to preserve H and whose step Z changes it by more
+ * than rounding has not solved its equations (the Gauss rule of an
+ * integral whose segment passes near a singularity of H, as AVF's near
+ * Kepler's collision): refused, naming the step, rather than a result. */
+static int energy_check(hl_scheme_stepper *st, const double *z, const double *Z, double D,
+                        double t, hl_error *err)
+{
+    if (st->energy == NULL)
+        return HL_OK;
+    size_t n = (size_t)(2 * st->N) * sizeof *z;
+    double a[2], b[2];
+    if (memcmp(z, st->at, n) == 0)
+        memcpy(a, st->at_energy, sizeof a);
+    else
+        hl_tape_eval_d(a, z, st->energy);
+    hl_tape_eval_d(b, Z, st->energy);
+    memcpy(st->at, Z, n), memcpy(st->at_energy, b, sizeof b);
+    double dH = fabs(b[0] - a[0]), tol = ENERGY_ULPS * DBL_EPSILON * fmax(a[1], b[1]);
+    if (dH <= tol)
+        return HL_OK;
+    return hl_error_set(err, HL_ENOCONV, NULL, -1, 0,
+                        "step %ld (t = %.17g, D = %g): the scheme '%s' preserves H, but this step "
+                        "changes it from %.17g to %.17g (by %.3g, rounding allows %.3g): its "
+                        "equations are not solved to rounding here%s",
+                        st->steps + 1, t, D, st->claims, a[0], b[0], dH, tol,
+                        st->ncheck > 0 || st->integrals
+                            ? " (an integral by a rule not accurate near a singularity of H?)"
+                            : "");
+}
+
 int hl_scheme_step(hl_scheme_stepper *st, double *z, double D, double t, hl_error *err)
 {
     int N = st->N;
@@ -570,6 +667,8 @@ int hl_scheme_step(hl_scheme_stepper *st, double *z, double D, double t, hl_erro
             return hl_error_set(err, HL_EDOM, NULL, -1, 0,
                                 "step %ld (t = %.17g, D = %g): the next point is not finite",
                                 st->steps + 1, t, D);
+        if (energy_check(st, z, st->out, D, t, err) != HL_OK)
+            return HL_ENOCONV;
         memcpy(z, st->out, (size_t)(2 * N) * sizeof *z);
     } else {
         if (st->use_fallback)
@@ -592,6 +691,8 @@ int hl_scheme_step(hl_scheme_stepper *st, double *z, double D, double t, hl_erro
             return hl_error_set(err, HL_EDOM, NULL, -1, 0,
                                 "step %ld (t = %.17g, D = %g): the next point is not finite",
                                 st->steps + 1, t, D);
+        if (energy_check(st, z, Z, D, t, err) != HL_OK)
+            return st->fallback ? fallback_step(st, z, D, t, err) : HL_ENOCONV;
         memcpy(z, Z, (size_t)(2 * N) * sizeof *z);
     }
     st->steps++;

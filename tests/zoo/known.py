@@ -58,9 +58,6 @@ KNOWN = [
     # "a constant subexpression is not finite"
     dict(defect="N2", kind="regression-N2", label=r"p\^2/2 \+ q\*p",
          scheme="yoshida4"),
-    # N3: AVF (which claims to preserve H) across Kepler's near-collision:
-    # H jumps from -0.737 to 18.07 in one step, exit 0
-    dict(defect="N3", kind="regression-N3"),
     # N4: the section-4 analysis of RK4 on the Toda lattices (2 and 3 dof) is
     # refused: "too many functions and roots (the limit is 32)"
     dict(defect="N4", kind="errors-symbolic-done", system="toda-.*",
