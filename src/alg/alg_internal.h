@@ -84,6 +84,9 @@ int alg_reduce(fmpz_mpoly_t p, hl_alg_ctx *ctx);
 void alg_canonicalise(hl_alg *a, hl_alg_ctx *ctx);
 void alg_set_poly(hl_alg *r, const fmpz_mpoly_t p, hl_alg_ctx *ctx); /* r = p, canonical */
 void alg_set_var(hl_alg *r, int v, hl_alg_ctx *ctx);                   /* r = variable v */
+/* HL_ELIMIT if the coefficients of a^n would be too long to compute
+ * exactly (about n log2 of the largest coefficient of a), else HL_OK. */
+int alg_check_pow_size(const hl_alg *a, unsigned long n, const hl_alg_ctx *ctx, hl_error *err);
 
 /* ---- zero.c ---- */
 int alg_depends_mask(unsigned char *dep, const hl_alg *a, const hl_alg_ctx *ctx);

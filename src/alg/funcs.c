@@ -138,6 +138,9 @@ static int alg_root(hl_alg *r, const hl_alg *a, long q, hl_alg_ctx *ctx, hl_erro
     }
     if (sg < 0 && q % 2 == 0)
         return hl_error_set(err, HL_EDOM, NULL, -1, 0, "even root of a negative number");
+    int status = alg_check_pow_size(a, (unsigned long)(q - 1), ctx, err); /* den^(q-1) */
+    if (status != HL_OK)
+        return status;
     hl_alg arg, res;
     hl_alg_init(&arg, ctx);
     hl_alg_init(&res, ctx);
@@ -147,7 +150,6 @@ static int alg_root(hl_alg *r, const hl_alg *a, long q, hl_alg_ctx *ctx, hl_erro
     if (neg)
         fmpz_mpoly_neg(arg.num, arg.num, mc);
     alg_reduce(arg.num, ctx);
-    int status = HL_OK;
     fmpz_t m, rt;
     fmpz_init(m);
     fmpz_init(rt);

@@ -424,6 +424,31 @@ int hl_alg_div(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx, hl_
     return HL_OK;
 }
 
+/* The longest coefficient an exact power may have, in bits: as long as
+ * the lexer's largest literal (1e10000, 33220 bits) times three.  NOTE: a
+ * power of 11 million bits (9.888...^9999.9, found by fuzzing) took
+ * minutes, and none of its digits means anything in a Hamiltonian. */
+#define ALG_POW_MAX_BITS 100000
+
+static unsigned long coeff_bits(const fmpz_mpoly_t p)
+{
+    slong b = fmpz_mpoly_max_bits(p); /* < 0 when a coefficient is */
+    return (unsigned long)(b < 0 ? -b : b);
+}
+
+int alg_check_pow_size(const hl_alg *a, unsigned long n, const hl_alg_ctx *ctx, hl_error *err)
+{
+    unsigned long bits = coeff_bits(a->num), dbits = coeff_bits(a->den);
+    bits = bits > dbits ? bits : dbits;
+    /* log2 |c| >= bits - 1: exact for powers of 2 (2^99999 is allowed) */
+    if (bits <= 1 || n <= ALG_POW_MAX_BITS / (bits - 1))
+        return HL_OK;
+    double total = (double)n * (double)(bits - 1);
+    return hl_error_set(err, HL_ELIMIT, NULL, -1, 0,
+                        "power too large to compute exactly: about %.3g bits (the limit is %d)",
+                        total, ALG_POW_MAX_BITS);
+}
+
 int hl_alg_pow_si(hl_alg *r, const hl_alg *a, long e, hl_alg_ctx *ctx, hl_error *err)
 {
     const fmpz_mpoly_ctx_struct *mc = ctx->mctx;
@@ -444,7 +469,8 @@ int hl_alg_pow_si(hl_alg *r, const hl_alg *a, long e, hl_alg_ctx *ctx, hl_error 
     else
         hl_alg_set(&t, a, ctx);
     unsigned long n = e < 0 ? 0UL - (unsigned long)e : (unsigned long)e;
-    if (n > 1) {
+    int status = alg_check_pow_size(&t, n, ctx, err);
+    if (status == HL_OK && n > 1) {
         fmpz_mpoly_pow_ui(t.num, t.num, n, mc);
         fmpz_mpoly_pow_ui(t.den, t.den, n, mc);
         int changed = alg_reduce(t.num, ctx);
@@ -452,7 +478,8 @@ int hl_alg_pow_si(hl_alg *r, const hl_alg *a, long e, hl_alg_ctx *ctx, hl_error 
         if (changed)
             alg_canonicalise(&t, ctx);
     }
-    hl_alg_swap(r, &t, ctx);
+    if (status == HL_OK)
+        hl_alg_swap(r, &t, ctx);
     hl_alg_clear(&t, ctx);
-    return HL_OK;
+    return status;
 }

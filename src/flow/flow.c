@@ -23,6 +23,7 @@ struct hl_flow {
     double t_probe;    /* the time of the first step since it was asked */
     long n_probe;      /* and nsteps then */
     int native_done;   /* decided (compiled or not) */
+    hl_flow_pace pace; /* to stop where the steps shrink forever */
 };
 
 int hl_flow_new(hl_flow **out, hl_tape *f, double atol, double rtol, hl_error *err)
@@ -270,6 +271,9 @@ static int drive(hl_flow *fl, double *thi, double *tlo, double *z, double tend, 
         } else {
             time_add(thi, tlo, dir * h);
         }
+        double done;
+        if (hl_flow_stalled(&fl->pace, h, &done))
+            return hl_flow_no_progress(err, done, *thi);
     }
 }
 

@@ -21,6 +21,7 @@ struct hl_flow_arb {
     int check;      /* the current step is to be checked (hl_flow_shrink) */
     arb_t h, tau, rem;
     long nsteps;
+    hl_flow_pace pace; /* to stop where the steps shrink forever */
 };
 
 int hl_flow_arb_new(hl_flow_arb **out, hl_tape *f, double digits, hl_error *err)
@@ -230,6 +231,9 @@ static int drive(hl_flow_arb *fl, arb_t t, arb_ptr z, const arb_t tend, arb_srcp
             arb_set(t, tend);
         else
             arb_add(t, t, fl->h, prec);
+        double done;
+        if (hl_flow_stalled(&fl->pace, fabs(mid_d(fl->h)), &done))
+            return hl_flow_no_progress(err, done, mid_d(t));
     }
 }
 

@@ -27,6 +27,8 @@
 
 #include <math.h>
 
+#include "hamlie/error.h"
+
 #define HL_FLOW_MAX_ORDER 1000
 
 /* The orders the step reads: the last HL_FLOW_WINDOW, p-5..p.  Six see a
@@ -121,6 +123,46 @@ static inline double hl_flow_step_for(int *check, double eps, double ln_eps, con
         }
     }
     return h;
+}
+
+/* NOTE: where the field has an essential singularity (sin(1/p) at p = 0,
+ * reached at a finite time t*) the steps shrink like (t* - t)^2, not like
+ * t* - t as at a pole (1/p): t creeps towards t* and the step falls below
+ * the rounding of t only after some 1e8 steps, so the run took minutes (the
+ * zoo's N7).  The driver therefore measures its pace, the time covered by
+ * each block of HL_FLOW_BLOCK steps, and stops, with "no progress", a flow
+ * whose pace has fallen below 1/HL_FLOW_SLOWDOWN of its fastest: an orbit
+ * that only passes near a singularity (Kepler's pericentre) takes a few
+ * hundred short steps there, not thousands. */
+#define HL_FLOW_BLOCK 4096
+#define HL_FLOW_SLOWDOWN 1e6
+
+typedef struct {
+    long n;      /* steps taken in the current block */
+    double done; /* the time they covered */
+    double best; /* the most a block of the flow covered */
+} hl_flow_pace; /* zero to start */
+
+/* After a step of length h > 0: 1 if the block it ends went too slowly
+ * (see above), with *done the time that block covered. */
+static inline int hl_flow_stalled(hl_flow_pace *pace, double h, double *done)
+{
+    pace->done += h;
+    if (++pace->n < HL_FLOW_BLOCK)
+        return 0;
+    *done = pace->done;
+    pace->n = 0;
+    pace->done = 0;
+    pace->best = *done > pace->best ? *done : pace->best;
+    return *done * HL_FLOW_SLOWDOWN < pace->best;
+}
+
+static inline int hl_flow_no_progress(hl_error *err, double done, double t)
+{
+    return hl_error_set(err, HL_ENOCONV, NULL, -1, 0,
+                        "no progress: %d steps covered %g only, at t = %.17g "
+                        "(a singularity of the field?)",
+                        HL_FLOW_BLOCK, done, t);
 }
 
 /* A step that the window does not vouch for is checked by its defect,

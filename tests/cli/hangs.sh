@@ -1,0 +1,55 @@
+#!/bin/bash
+# Inputs that used to run for minutes (issue 13, the zoo's and the fuzzer's
+# hangs).  Each must end within a few CPU seconds, refused: exit 2, a
+# message that names the cause, nothing on stdout.
+# usage (from the repo root): bash tests/cli/hangs.sh path/to/hamlie
+set -u
+HAMLIE=${1:?usage: hangs.sh path/to/hamlie}
+. "$(dirname "$0")/lib/harness.sh"
+LIMIT=5 # CPU seconds; a hang is killed (exit 137 or 152)
+ldd "$HAMLIE" 2>/dev/null | grep -q libasan && LIMIT=20
+
+# refused TEXT args...: exit 2 under the limit, stdout empty, TEXT in stderr
+refused() {
+    local text=$1
+    shift
+    timeout $((6 * LIMIT)) bash -c 'ulimit -t "$1"; shift; exec "$@"' _ "$LIMIT" "$HAMLIE" "$@" \
+        >"$tmp/out" 2>"$tmp/err"
+    local rc=$?
+    if [ "$rc" -eq 2 ]; then ok; else
+        bad "hamlie $* exited $rc, want 2 (137, 152: over $LIMIT s of CPU)"; sed 's/^/    /' "$tmp/err" >&2
+    fi
+    if [ -s "$tmp/out" ]; then bad "stdout not empty for: hamlie $*"; else ok; fi
+    err_has "$text"
+}
+
+OSC='(p^2+omega^2*x^2)/2'
+# ---- exact powers whose value would have millions of bits -------------------
+# 9.888...^9999.9 = (98888...9/10^33)^(99999/10): about 11 million bits
+# (the fuzzer's input, also in fuzz/corpus/param)
+refused "too large" generator -H "$OSC" --param 'omega=9^9.888888888888888888888888888888889^9999.9'
+refused "too large" generator -H "$OSC" --param 'omega=9.888888888888888888888888888888889^99999'
+refused "too large" generator -H '(p^2+x^2)/2 + x*9.888888888888888888888888888888889^9999.9'
+refused "too large" generator -H '(p^2+x^2)/2 + x*(10^40+1/3)^99999'
+refused "too large" generator -H '(p^2+x^2)/2 + x*(10/3)^(1/99999)'
+refused "too large" generator -H 'x^(9^9^9)*p'
+# --init is read in floating point: 10^9950 is refused as not finite
+refused "not finite" run -H "$OSC" --param omega=1 --scheme rk4 --dt 0.1 --t 1 --json \
+    --init 'x=9.888888888888888888888888888888889^9999.9,p=0'
+refused "too large" canonical --map 'Q=q*(10^40+1/3)^99999; P=p' --pairs q:p
+# below the limit they are exact: 2^1000 * 2^(-999) = 2, (3/2)^(1/2)^2 = 3/2
+run 0 generator -H "(p^2+x^2*2^1000*2^(-999))/2"
+has_text "2*x"
+run 0 generator -H "(p^2+x^2*((3/2)^(1/2))^2)/2"
+has_text "3*x/2"
+
+# ---- the zoo's N7: an orbit that meets an essential singularity -------------
+# dp/dt = -10 from p = 0.01: p = 0 (where sin(1/p) has an essential
+# singularity) at t = 0.001; the steps shrink like p^2 there, so t creeps
+# towards 0.001 and the step never underflowed
+refused "no progress" run -H '10*q + sin(1/p)' --pairs q:p --scheme lie --tol 1e-12 --t 1 --json \
+    --init q=0,p=0.01
+# with 1/p the steps shrink like p: they underflow
+refused "step size underflow" run -H '10*q + 1/p' --pairs q:p --scheme lie --tol 1e-12 --t 1 --json \
+    --init q=0,p=0.01
+finish
