@@ -46,18 +46,6 @@ KNOWN = [
     dict(defect=8, kind="same-H-two-ways.*",
          system="aniso-2d|aniso-3d|coupled-osc|kepler-2d|kepler-3d|toda-2"),
     # ---- found by this harness, beyond the twelve -------------------------
-    # N1: yoshida4 on a non-separable H (magnetic field): the set-up grows
-    # past 1.6 GB and 30 s (Stormer-Verlet alone: 0.05 s)
-    dict(defect="N1", kind="run-.*-done|step-done", system="magnetic.*",
-         scheme="yoshida4", hang=True),
-    # N2: a valid H refused with an internal message, or a crash: an
-    # unknown eliminated twice in the stepper's set-up (fixed here, in
-    # src/scheme/step.c: itoh-abe on px^2/2+py^2/2+y*px+x^2/2 "unknown symbol
-    # 'P#1'", yoshida4 on p^2/2+q^2*p "unknown symbol 'y1q#1'", AVF and
-    # Itoh-Abe on p^2/2+p*q^2 SIGSEGV); still open: yoshida4 on p^2/2+q*p,
-    # "a constant subexpression is not finite"
-    dict(defect="N2", kind="regression-N2", label=r"p\^2/2 \+ q\*p",
-         scheme="yoshida4"),
     # N3: AVF (which claims to preserve H) across Kepler's near-collision:
     # H jumps from -0.737 to 18.07 in one step, exit 0
     dict(defect="N3", kind="regression-N3"),
