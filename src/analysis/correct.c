@@ -1,7 +1,6 @@
 /* Closed forms of explicit schemes, K(D) in closed form, corrected schemes
  * (analysis.h). */
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -33,17 +32,26 @@ static double multisets(double n, long k)
     return c;
 }
 
+/* The walk of terms_node: bounds per node, and the largest. */
+typedef struct terms_walk {
+    hl_memo bound;
+    double most;
+} terms_walk;
+
 /* A bound on the terms of a node expanded, from its operands' bounds: a sum
  * adds them, a product or quotient multiplies them, an integer power k
  * takes the monomials of degree k; a function or another power is one
- * atom, 1 (its argument is bounded at its own node).  A symbol counts 1 unless its bound is set before the walk (an
- * earlier stage, by its terms). */
-static int terms_node(void *seen, const hl_expr *e)
+ * atom, 1 (its argument is bounded at its own node).  A symbol counts 1
+ * unless its bound is set before the walk (an earlier stage, by its
+ * terms). */
+static int terms_node(void *arg, const hl_expr *e)
 {
-    double a = e->a ? hl_memo_get(seen, e->a)->d : 1, b = e->b ? hl_memo_get(seen, e->b)->d : 1;
+    terms_walk *w = arg;
+    const hl_memo *m = &w->bound;
+    double a = e->a ? hl_memo_get(m, e->a)->d : 1, b = e->b ? hl_memo_get(m, e->b)->d : 1;
     double t = 1;
     if (e->kind == HL_SYM) {
-        const hl_memo_val *v = hl_memo_get(seen, e);
+        const hl_memo_val *v = hl_memo_get(m, e);
         t = v ? v->d : 1;
     } else if (e->kind == HL_NEG)
         t = a;
@@ -57,7 +65,8 @@ static int terms_node(void *seen, const hl_expr *e)
         double pw = pow(a, (double)k), ms = multisets(a, k);
         t = pw < ms ? pw : ms;
     }
-    hl_memo_put(seen, e)->d = t;
+    hl_memo_put(&w->bound, e)->d = t;
+    w->most = t > w->most ? t : w->most;
     return 0;
 }
 
@@ -66,18 +75,14 @@ static int terms_node(void *seen, const hl_expr *e)
 static double stage_bound(int i, const long *len, const hl_scheme *s)
 {
     hl_pool *pool = hl_system_pool(s->sys);
-    hl_memo seen;
-    hl_memo_init(&seen);
+    terms_walk w = {.most = 0};
+    hl_memo_init(&w.bound);
     for (int u = 0; u < s->m; u++)
         if (len[u] > 0)
-            hl_memo_put(&seen, hl_sym(pool, s->unknown[u]))->d = (double)len[u];
-    hl_expr_postorder(&s->rhs[i], 1, terms_node, &seen);
-    double t = 0;
-    for (size_t k = 0; k < seen.cap; k++)
-        if (seen.keys[k] != NULL && seen.vals[k].d > t)
-            t = seen.vals[k].d;
-    hl_memo_clear(&seen);
-    return t;
+            hl_memo_put(&w.bound, hl_sym(pool, s->unknown[u]))->d = (double)len[u];
+    hl_expr_postorder(&s->rhs[i], 1, terms_node, &w);
+    hl_memo_clear(&w.bound);
+    return w.most;
 }
 
 /* Each unknown's value expanded, in the order the equations give them, as
