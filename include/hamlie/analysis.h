@@ -99,8 +99,11 @@ struct hl_scheme;
  * scheme or one with integrals; HL_ELIMIT when functions (sqrt, sin, a
  * non-integer power) nest more than HL_ERRORS_MAP_MAX_NESTING deep in the
  * images, whose exact normal form swells (yoshida4 on Kepler: 4 deep, no
- * answer in a minute). */
+ * answer in a minute), or when a bound on the terms of one equation's value
+ * expanded (the earlier ones' terms raised to its powers) exceeds
+ * HL_ERRORS_MAP_MAX_STAGE_BOUND (yoshida4 on p^2/2 + q^6/6: degree 5^6). */
 #define HL_ERRORS_MAP_MAX_NESTING 3
+#define HL_ERRORS_MAP_MAX_STAGE_BOUND 1e6
 int hl_errors_scheme_map(hl_alg *images, const struct hl_scheme *s, hl_error *err);
 
 /* K(D) = (d/dD psi_D)(psi_{-D}(z)) in closed form for a map given by its 2N

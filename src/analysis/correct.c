@@ -1,5 +1,6 @@
 /* Closed forms of explicit schemes, K(D) in closed form, corrected schemes
  * (analysis.h). */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,6 +20,99 @@ static int nesting_node(void *seen, const hl_expr *e)
         d++;
     hl_memo_put(seen, e)->i = d;
     return 0;
+}
+
+/* binomial(n + k - 1, k): the monomials of degree k in n symbols, a bound
+ * on the terms of the k-th power of n terms */
+static double multisets(double n, long k)
+{
+    double c = 1;
+    for (long i = 1; i <= k && c < HUGE_VAL; i++)
+        c = c * (n + (double)i - 1) / (double)i;
+    return c;
+}
+
+/* The walk of terms_node: bounds per node, and the largest. */
+typedef struct terms_walk {
+    hl_memo bound;
+    double most;
+} terms_walk;
+
+/* A bound on the terms of a node expanded, from its operands' bounds: a sum
+ * adds them, a product or quotient multiplies them, an integer power k
+ * takes the monomials of degree k; a function or another power is one
+ * atom, 1 (its argument is bounded at its own node).  A symbol counts 1
+ * unless its bound is set before the walk (an earlier stage, by its
+ * terms). */
+static int terms_node(void *arg, const hl_expr *e)
+{
+    terms_walk *w = arg;
+    const hl_memo *m = &w->bound;
+    double a = e->a ? hl_memo_get(m, e->a)->d : 1, b = e->b ? hl_memo_get(m, e->b)->d : 1;
+    double t = 1;
+    if (e->kind == HL_SYM) {
+        const hl_memo_val *v = hl_memo_get(m, e);
+        t = v ? v->d : 1;
+    } else if (e->kind == HL_NEG)
+        t = a;
+    else if (e->kind == HL_ADD || e->kind == HL_SUB)
+        t = a + b;
+    else if (e->kind == HL_MUL || e->kind == HL_DIV)
+        t = a * b;
+    else if (e->kind == HL_POW && e->b->kind == HL_NUM &&
+             fmpz_is_one(fmpq_denref(e->b->num)) && fmpz_bits(fmpq_numref(e->b->num)) <= 20) {
+        long k = labs(fmpz_get_si(fmpq_numref(e->b->num)));
+        double pw = pow(a, (double)k), ms = multisets(a, k);
+        t = pw < ms ? pw : ms;
+    }
+    hl_memo_put(&w->bound, e)->d = t;
+    w->most = t > w->most ? t : w->most;
+    return 0;
+}
+
+/* The largest bound on the terms of a node of equation i's right side
+ * (terms_node), the unknowns given before it counted by their terms len[u] */
+static double stage_bound(int i, const long *len, const hl_scheme *s)
+{
+    hl_pool *pool = hl_system_pool(s->sys);
+    terms_walk w = {.most = 0};
+    hl_memo_init(&w.bound);
+    for (int u = 0; u < s->m; u++)
+        if (len[u] > 0)
+            hl_memo_put(&w.bound, hl_sym(pool, s->unknown[u]))->d = (double)len[u];
+    hl_expr_postorder(&s->rhs[i], 1, terms_node, &w);
+    hl_memo_clear(&w.bound);
+    return w.most;
+}
+
+/* Each unknown's value expanded, in the order the equations give them, as
+ * long as the bound on its terms (stage_bound, from the earlier stages'
+ * terms) is within HL_ERRORS_MAP_MAX_STAGE_BOUND: the stages of a
+ * composition feed powers of one another, and the images' degree
+ * multiplies at each (yoshida4 on p^2/2 + q^6/6: 5^6 in q, no answer in
+ * minutes).  HL_ELIMIT at the first stage past it, before it is paid. */
+static int stages_within(const hl_expr **val_of, const hl_scheme *s, hl_alg_ctx *ctx,
+                         hl_error *err)
+{
+    hl_alg a;
+    hl_alg_init(&a, ctx);
+    long *len = hl_xcalloc((size_t)s->m, sizeof *len);
+    int st = HL_OK;
+    for (int i = 0; i < s->m && st == HL_OK; i++) {
+        double bound = stage_bound(i, len, s);
+        if (bound > HL_ERRORS_MAP_MAX_STAGE_BOUND) {
+            st = hl_error_set(err, HL_ELIMIT, NULL, -1, 0,
+                              "the map's stage %d may have %.3g terms (more than %g)", i + 1,
+                              bound, HL_ERRORS_MAP_MAX_STAGE_BOUND);
+            break;
+        }
+        st = hl_alg_from_expr(&a, val_of[s->defines[i]], ctx, err);
+        if (st == HL_OK)
+            len[s->defines[i]] = hl_alg_length(&a, ctx);
+    }
+    hl_alg_clear(&a, ctx);
+    free(len);
+    return st;
 }
 
 int hl_errors_scheme_map(hl_alg *images, const hl_scheme *s, hl_error *err)
@@ -55,6 +149,8 @@ int hl_errors_scheme_map(hl_alg *images, const hl_scheme *s, hl_error *err)
         st = hl_error_set(err, HL_ELIMIT, NULL, -1, 0,
                           "functions nest %d deep in the map (more than %d)", depth,
                           HL_ERRORS_MAP_MAX_NESTING);
+    if (st == HL_OK)
+        st = stages_within(val_of, s, ctx, err);
     for (int j = 0; j < 2 * s->N && st == HL_OK; j++) {
         int u = j < s->N ? s->iQ[j] : s->iP[j - s->N];
         st = hl_alg_from_expr(&images[j], val_of[u], ctx, err);

@@ -239,6 +239,23 @@ static const hl_expr *subst_known(const hl_expr *e, const hl_expr **val, const h
     return r;
 }
 
+/* Is the coefficient c of an unknown (free of the unknowns) finite and
+ * non-zero at D = 0?  Then -F0/c is regular there as written.  Else, as
+ * for (Q - q)/D = p (c = 1/D), it is put in canonical form: Q = q + p D,
+ * not (q/D + p) D.  Only then: the canonical form of every value swells
+ * when a composition's stages are substituted into one another (yoshida4
+ * on a magnetic H, each kick implicit and affine). */
+static int regular_at_zero(const hl_expr *c, const hl_scheme *s, hl_pool *pool)
+{
+    hl_alg_ctx *ctx = hl_system_ctx(s->sys);
+    hl_alg a;
+    hl_alg_init(&a, ctx);
+    const hl_expr *c0 = scheme_at_zero(s, pool, c);
+    int r = hl_alg_from_expr(&a, c0, ctx, NULL) == HL_OK && !hl_alg_is_zero(&a, ctx);
+    hl_alg_clear(&a, ctx);
+    return r;
+}
+
 /* The unknown equation i gives explicitly, and its value: U_u = rhs free of
  * U_u, or an equation affine in one unknown with a coefficient free of the
  * unknowns ((Q - q)/D = p gives Q = q + p D).  -1 if none.  An unknown
@@ -266,7 +283,7 @@ static int solvable(const hl_expr **value, int i, const hl_expr **val, const hl_
         const hl_expr *zero = hl_num_si(pool, 0);
         const hl_expr *F0 = hl_expr_subst(pool, F, 1, (const char *const *)&s->unknown[u], &zero);
         *value = hl_neg(pool, hl_div(pool, F0, c));
-        if (s->nint == 0) /* -F0/c in canonical form: Q = q + p D, not (q/D + p) D */
+        if (s->nint == 0 && !regular_at_zero(c, s, pool))
             simplify(value, 1, 1, s, pool);
         return u;
     }
