@@ -148,6 +148,7 @@ typedef struct result {
     char map_omitted[HL_ERROR_MSG_MAX]; /* explicit, but the map not in closed form: why */
     int have_K;          /* K's closed form within its budget */
     long K_terms;        /* else the terms it reached */
+    double K_printed;    /* or, if within it, its size written out past the print limit */
     hl_series *Ks;       /* K's Taylor series */
     int correct;
     hl_series *cpsi;     /* corrected series */
@@ -250,7 +251,8 @@ static int closed_forms(result *R, hl_error *err)
     st = hl_errors_K_closed_bounded(R->K, &R->K_terms, R->map, K_CLOSED_BUDGET, R->sys, err);
     if (st != HL_OK && st != HL_ELIMIT)
         return st;
-    R->have_K = st == HL_OK && printed_size(R->K, R) <= HL_PRINT_MAX_NODES;
+    if (st == HL_OK && (R->K_printed = printed_size(R->K, R)) <= HL_PRINT_MAX_NODES)
+        R->have_K = 1;
     hl_error_clear(err);
     return HL_OK;
 }
@@ -585,7 +587,11 @@ static void write_text(hl_buf *out, result *R, const err_opts *r, const cli_opts
     put_order(out, &R->e);
     if (R->have_F)
         put_classification(out, &R->e, &R->F, R, st);
-    if (R->closed && !R->have_K)
+    if (R->closed && !R->have_K && R->K_printed > HL_PRINT_MAX_NODES)
+        hl_buf_printf(out, "K(D) = psi_{-D} o d/dD psi_D: closed form omitted: %.0f terms and "
+                           "operators written out (the print limit is %d)\n",
+                      R->K_printed, HL_PRINT_MAX_NODES);
+    else if (R->closed && !R->have_K)
         hl_buf_printf(out, "K(D) = psi_{-D} o d/dD psi_D: closed form omitted: %ld terms "
                            "(over the budget of %d)\n", R->K_terms, K_CLOSED_BUDGET);
     if (R->have_K) {
@@ -749,9 +755,10 @@ static void write_json(hl_buf *out, result *R, const err_opts *r, const cli_opts
         hl_json_null(&j);
         hl_json_key(&j, "K_omitted");
         hl_json_object_begin(&j);
-        hl_json_kv_string(&j, "reason", "size_budget");
-        hl_json_kv_int(&j, "terms", R->K_terms);
-        hl_json_kv_int(&j, "budget", K_CLOSED_BUDGET);
+        int printed = R->K_printed > HL_PRINT_MAX_NODES;
+        hl_json_kv_string(&j, "reason", printed ? "print_limit" : "size_budget");
+        hl_json_kv_int(&j, "terms", printed ? (long)R->K_printed : R->K_terms);
+        hl_json_kv_int(&j, "budget", printed ? HL_PRINT_MAX_NODES : K_CLOSED_BUDGET);
         hl_json_object_end(&j);
     }
     hl_json_key(&j, "K_coefficients");
