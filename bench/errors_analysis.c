@@ -1,10 +1,10 @@
 /* Benchmark (issue 4): the error fields of RK4 on Hénon–Heiles and of the
  * implicit midpoint rule on the pendulum, to order 8.  The core computation
  * is the scheme's expansion in D (hl_scheme_expand) and the error fields
- * v_2..v_8, timed twice: the direct route alone (hl_errors_compute_direct:
+ * v_2..v_8, timed twice: the direct route alone (hl_vfields_compute_direct:
  * the expansion minus the Lie series, what the SymPy peer
  * bench/errors_sympy.py does), and with the K(D) cross-check that
- * `hamlie errors` runs (hl_errors_compute).
+ * `hamlie errors` runs (hl_vfields_compute).
  * Prints one line per case: name, order, seconds direct, seconds with the
  * cross-check (best of several runs each). */
 #include <stdio.h>
@@ -30,7 +30,7 @@ static int run_once(const char *H, const char *scheme, int order, int cross)
     hl_system *sys = NULL;
     hl_scheme *s = NULL;
     hl_series *psi = NULL;
-    hl_errors e = {0};
+    hl_vfields e = {0};
     int have_e = 0, m = 0;
     hl_error err;
     hl_error_clear(&err);
@@ -47,15 +47,15 @@ static int run_once(const char *H, const char *scheme, int order, int cross)
     }
     if (st == HL_OK) {
         have_e = 1;
-        st = cross ? hl_errors_compute(&e, psi, sys, order, &err)
-                   : hl_errors_compute_direct(&e, psi, sys, order, &err);
+        st = cross ? hl_vfields_compute(&e, psi, sys, order, &err)
+                   : hl_vfields_compute_direct(&e, psi, sys, order, &err);
         if (st == HL_OK && cross && !e.agree)
             fprintf(stderr, "errors_analysis: v_%d disagree\n", e.disagree_k);
     }
     if (st != HL_OK)
         fprintf(stderr, "errors_analysis: %s\n", err.msg);
     if (have_e)
-        hl_errors_clear(&e, sys);
+        hl_vfields_clear(&e, sys);
     if (psi != NULL) {
         for (int i = 0; i < m; i++)
             hl_series_clear(&psi[i], hl_system_ctx(sys));

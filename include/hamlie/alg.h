@@ -98,15 +98,15 @@ void hl_alg_sub(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx);
 void hl_alg_neg(hl_alg *r, const hl_alg *a, hl_alg_ctx *ctx);
 void hl_alg_mul(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx);
 void hl_alg_scalar_mul_fmpq(hl_alg *r, const hl_alg *a, const fmpq_t c, hl_alg_ctx *ctx);
-int hl_alg_div(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx, hl_error *err);
-int hl_alg_pow_si(hl_alg *r, const hl_alg *a, long e, hl_alg_ctx *ctx, hl_error *err);
+hl_status hl_alg_div(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx, hl_error *err);
+hl_status hl_alg_pow_si(hl_alg *r, const hl_alg *a, long e, hl_alg_ctx *ctx, hl_error *err);
 
 /* ---- conversion ------------------------------------------------------- */
 
 /* Read an expression.  Every symbol must be a base symbol (else HL_EINVAL
  * naming it); functions become atoms; a^(p/q) with a rational exponent uses
  * powers and roots; a^b with b not constant is exp(b*log(a)). */
-int hl_alg_from_expr(hl_alg *r, const hl_expr *e, hl_alg_ctx *ctx, hl_error *err);
+hl_status hl_alg_from_expr(hl_alg *r, const hl_expr *e, hl_alg_ctx *ctx, hl_error *err);
 
 /* Write as an expression the way a person would (rules in print.c): terms
  * collected and ordered (see hl_alg_ctx_set_step), a minus on the first
@@ -119,27 +119,27 @@ const hl_expr *hl_alg_to_expr(const hl_alg *a, const hl_alg_ctx *ctx, hl_pool *p
 /* ---- calculus and structure ------------------------------------------- */
 
 /* Partial derivative with respect to base symbol var (chain rule through atoms). */
-int hl_alg_diff(hl_alg *r, const hl_alg *a, int var, hl_alg_ctx *ctx, hl_error *err);
+hl_status hl_alg_diff(hl_alg *r, const hl_alg *a, int var, hl_alg_ctx *ctx, hl_error *err);
 
 /* An antiderivative in base symbol x of f whose numerator is a polynomial in
  * x, sin(x) and cos(x) (other factors free of x) over a denominator free
  * of x (reduction formulas and integration by parts; antideriv.c).  *found
  * = 0, not an error, for anything else; a result is always checked: its
  * derivative in x is f exactly.  No constant is added. */
-int hl_alg_antiderivative(hl_alg *r, int *found, const hl_alg *f, int x, hl_alg_ctx *ctx,
-                          hl_error *err);
+hl_status hl_alg_antiderivative(hl_alg *r, int *found, const hl_alg *f, int x, hl_alg_ctx *ctx,
+                                hl_error *err);
 
 /* Simultaneous substitution of base symbols vars[i] by vals[i]; atoms whose
  * arguments change become (possibly new) atoms. */
-int hl_alg_subst(hl_alg *r, const hl_alg *a, int n, const int *vars, const hl_alg *vals,
-                 hl_alg_ctx *ctx, hl_error *err);
+hl_status hl_alg_subst(hl_alg *r, const hl_alg *a, int n, const int *vars, const hl_alg *vals,
+                       hl_alg_ctx *ctx, hl_error *err);
 
 /* hl_alg_subst with a size budget, checked as the result grows: HL_ELIMIT,
  * and *reached the terms seen when it stopped, once a numerator or
  * denominator would exceed max_terms terms (or the canonical form's
  * products max_terms^2/10 term pairs).  max_terms <= 0: no budget. */
-int hl_alg_subst_bounded(hl_alg *r, long *reached, const hl_alg *a, int n, const int *vars,
-                         const hl_alg *vals, long max_terms, hl_alg_ctx *ctx, hl_error *err);
+hl_status hl_alg_subst_bounded(hl_alg *r, long *reached, const hl_alg *a, int n, const int *vars,
+                               const hl_alg *vals, long max_terms, hl_alg_ctx *ctx, hl_error *err);
 
 /* Zero test: exact where the canonical form decides, else numeric (see top). */
 int hl_alg_is_zero(const hl_alg *a, hl_alg_ctx *ctx);
@@ -153,8 +153,7 @@ int hl_alg_depends_on(const hl_alg *a, int var, const hl_alg_ctx *ctx);
 
 /* Coefficient of var^k when a is a polynomial in base symbol var (its
  * denominator and atoms free of var); HL_EINVAL otherwise. */
-int hl_alg_coeff(hl_alg *r, const hl_alg *a, int var, long k, hl_alg_ctx *ctx,
-                 hl_error *err);
+hl_status hl_alg_coeff(hl_alg *r, const hl_alg *a, int var, long k, hl_alg_ctx *ctx, hl_error *err);
 long hl_alg_degree(const hl_alg *a, int var, const hl_alg_ctx *ctx); /* -1 for 0 */
 
 /* Number of terms of num plus den: the size of an element. */
@@ -162,8 +161,8 @@ long hl_alg_length(const hl_alg *a, const hl_alg_ctx *ctx);
 
 /* Evaluate with Arb at a point: vals[i] is the value of base symbol i.
  * HL_EDOM if a denominator or a function's domain is hit (ball contains 0). */
-int hl_alg_eval_arb(arb_t r, const hl_alg *a, arb_srcptr vals, slong prec,
-                    hl_alg_ctx *ctx, hl_error *err);
+hl_status hl_alg_eval_arb(arb_t r, const hl_alg *a, arb_srcptr vals, slong prec, hl_alg_ctx *ctx,
+                          hl_error *err);
 
 /* Checker for tests: are all the canonical-form invariants above true? */
 int hl_alg_is_canonical(const hl_alg *a, const hl_alg_ctx *ctx);
@@ -173,23 +172,23 @@ int hl_alg_is_canonical(const hl_alg *a, const hl_alg_ctx *ctx);
 /* r = f(a) for an expression-language function (sin, sqrt, tanh, ...):
  * tan = sin/cos, sinh/cosh/tanh through exp; exact values where they are
  * known (sin 0, sqrt(9/4), cos(pi/3), log 1); HL_EDOM outside the domain. */
-int hl_alg_apply(hl_alg *r, hl_fun f, const hl_alg *a, hl_alg_ctx *ctx, hl_error *err);
+hl_status hl_alg_apply(hl_alg *r, hl_fun f, const hl_alg *a, hl_alg_ctx *ctx, hl_error *err);
 
 /* r = f(a, b) for a function of two arguments: atan2(y, x), the angle of
  * (x, y) in (-pi, pi].  Exact where y and x are rational (atan2(0, 0) is
  * HL_EDOM); atan(y/x) where x is a positive number; odd in y. */
-int hl_alg_apply2(hl_alg *r, hl_fun f, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx,
-                  hl_error *err);
+hl_status hl_alg_apply2(hl_alg *r, hl_fun f, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx,
+                        hl_error *err);
 
 /* r = pi. */
-int hl_alg_pi(hl_alg *r, hl_alg_ctx *ctx, hl_error *err);
+hl_status hl_alg_pi(hl_alg *r, hl_alg_ctx *ctx, hl_error *err);
 
 /* r = a^e for a rational e: powers, square roots, q-th roots. */
-int hl_alg_pow_fmpq(hl_alg *r, const hl_alg *a, const fmpq_t e, hl_alg_ctx *ctx,
-                    hl_error *err);
+hl_status hl_alg_pow_fmpq(hl_alg *r, const hl_alg *a, const fmpq_t e, hl_alg_ctx *ctx,
+                          hl_error *err);
 
 /* r = a^b: pow_fmpq when b is a rational constant, else exp(b*log(a)). */
-int hl_alg_pow(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx, hl_error *err);
+hl_status hl_alg_pow(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx, hl_error *err);
 
 #ifdef __cplusplus
 }

@@ -42,53 +42,56 @@ typedef struct hl_errfield {
     hl_alg h;        /* v = J grad h: v(q_j) = dh/dp_j, v(p_j) = -dh/dq_j */
 } hl_errfield;
 
-typedef struct hl_errors {
+typedef struct hl_vfields {
     int N;          /* degrees of freedom */
     int n;          /* v_k known for k = 2..n */
     hl_alg *v;      /* v[k*2N + i], k = 0..n (k < 2 are zero): direct */
     hl_alg *vK;     /* the same from K alone (zero when not checked) */
-    int checked;    /* the K route was run (hl_errors_compute) */
+    int checked;    /* the K route was run (hl_vfields_compute) */
     int agree;      /* checked, and the two computations agree for every k */
     int disagree_k; /* first k where they do not (0 if they agree) */
     int leading;    /* m: the least k with v_k != 0, or 0 if none up to n */
     int order;      /* m - 1, or n when no error up to n (exact to that order) */
     hl_series *K;   /* K(D)'s series, 2N of psi's length - 1, when the K route
                      * computed it (else NULL) */
-    long budget;    /* hl_errors_compute_bounded: the K route's budget, and */
+    long budget;    /* hl_vfields_compute_bounded: the K route's budget, and */
     int over_budget; /* it passed it: checked = agree = 0, the v_k direct only */
-} hl_errors;
+} hl_vfields;
 
 /* psi: 2N series (Q_1..Q_N, P_1..P_N) known to at least O(D^(n+1)).
- * Fills e (call hl_errors_clear after, also on failure). */
-int hl_errors_compute(hl_errors *e, const hl_series *psi, hl_system *sys, int n,
-                      hl_error *err);
+ * Fills e (call hl_vfields_clear after, also on failure). */
+hl_status hl_vfields_compute(hl_vfields *e, const hl_series *psi, hl_system *sys, int n,
+                             hl_error *err);
 
 /* The same with the K route (a check) within a size budget: once a
  * coefficient of a composition passes max_terms terms
  * (hl_series_scheme_K_bounded) the route stops and e->over_budget = 1,
  * checked = agree = 0; e->K is kept when its own composition fitted.  The
  * v_k, leading and order come from the direct route either way. */
-int hl_errors_compute_bounded(hl_errors *e, const hl_series *psi, hl_system *sys, int n,
-                              long max_terms, hl_error *err);
-void hl_errors_clear(hl_errors *e, hl_system *sys);
+hl_status hl_vfields_compute_bounded(hl_vfields *e, const hl_series *psi, hl_system *sys, int n,
+                                     long max_terms, hl_error *err);
+void hl_vfields_clear(hl_vfields *e, hl_system *sys);
 
 /* The direct route alone (the expansion minus the Lie series): v, leading
  * and order as above, checked = agree = 0.  Several times faster where
  * the K route dominates (RK4 on Henon-Heiles to order 8: 2-4 ms against 72). */
-int hl_errors_compute_direct(hl_errors *e, const hl_series *psi, hl_system *sys, int n,
-                             hl_error *err);
+hl_status hl_vfields_compute_direct(hl_vfields *e, const hl_series *psi, hl_system *sys, int n,
+                                    hl_error *err);
 
 /* The field of v_k: 2N components. */
-static inline hl_alg *hl_errors_field(const hl_errors *e, int k) { return e->v + k * 2 * e->N; }
+static inline hl_alg *hl_vfields_v(const hl_vfields *e, int k)
+{
+    return e->v + k * 2 * e->N;
+}
 
 /* Classify a vector field v (2N components on (q, p)) against the generator. */
-int hl_errfield_classify(hl_errfield *f, const hl_alg *v, hl_system *sys, hl_error *err);
+hl_status hl_errfield_classify(hl_errfield *f, const hl_alg *v, hl_system *sys, hl_error *err);
 void hl_errfield_clear(hl_errfield *f, hl_system *sys);
 
 /* Do the 2N components v satisfy the Hamiltonian conditions
  * d a_i/d q_j + d b_j/d p_i = 0, d a_i/d p_j = d a_j/d p_i, d b_i/d q_j = d b_j/d q_i
  * (a = v(q), b = v(p))? */
-int hl_errfield_is_hamiltonian(int *yes, const hl_alg *v, hl_system *sys, hl_error *err);
+hl_status hl_errfield_is_hamiltonian(int *yes, const hl_alg *v, hl_system *sys, hl_error *err);
 
 /* ---- closed forms and corrections --------------------------------------- */
 
@@ -104,25 +107,25 @@ struct hl_scheme;
  * HL_ERRORS_MAP_MAX_STAGE_BOUND (yoshida4 on p^2/2 + q^6/6: degree 5^6). */
 #define HL_ERRORS_MAP_MAX_NESTING 3
 #define HL_ERRORS_MAP_MAX_STAGE_BOUND 1e6
-int hl_errors_scheme_map(hl_alg *images, const struct hl_scheme *s, hl_error *err);
+hl_status hl_errors_scheme_map(hl_alg *images, const struct hl_scheme *s, hl_error *err);
 
 /* K(D) = (d/dD psi_D)(psi_{-D}(z)) in closed form for a map given by its 2N
  * images (hl_alg_subst of psi_{-D}'s components into d psi/dD). */
-int hl_errors_K_closed(hl_alg *K, const hl_alg *images, hl_system *sys, hl_error *err);
+hl_status hl_errors_K_closed(hl_alg *K, const hl_alg *images, hl_system *sys, hl_error *err);
 
 /* The same within a size budget (hl_alg_subst_bounded): HL_ELIMIT, and
  * *reached the terms an intermediate polynomial reached, once one exceeds
  * max_terms; K is then left partial.  The closed form of a scheme that
  * nests radicals (Stormer-Verlet on Kepler) swells past any printable size. */
-int hl_errors_K_closed_bounded(hl_alg *K, long *reached, const hl_alg *images, long max_terms,
-                               hl_system *sys, hl_error *err);
+hl_status hl_errors_K_closed_bounded(hl_alg *K, long *reached, const hl_alg *images, long max_terms,
+                                     hl_system *sys, hl_error *err);
 
 /* The corrected scheme psi_D - sum_{k=2}^{m} D^k/k! v_k (m <= e->n):
  * as series (out: 2N series, the length of psi's) and, when images is not
  * NULL, as a map (images replaced in place). */
-void hl_errors_correct_series(hl_series *out, const hl_series *psi, const hl_errors *e, int m,
+void hl_errors_correct_series(hl_series *out, const hl_series *psi, const hl_vfields *e, int m,
                               hl_system *sys);
-void hl_errors_correct_map(hl_alg *images, const hl_errors *e, int m, hl_system *sys);
+void hl_errors_correct_map(hl_alg *images, const hl_vfields *e, int m, hl_system *sys);
 
 /* ---- time reparametrisation (part 4) ----------------------------------- */
 
@@ -132,8 +135,8 @@ void hl_errors_correct_map(hl_alg *images, const hl_errors *e, int m, hl_system 
  * a_k free of the phase variables.  *ok = 0 and *fail_k = k when it is not
  * (psi is then not a pure time translation at order k).  tau gets n + 1
  * coefficients.  psi: 2N series known to O(D^(n+1)). */
-int hl_errors_time_series(hl_series *tau, int *ok, int *fail_k, const hl_series *psi,
-                          hl_system *sys, int n, hl_error *err);
+hl_status hl_errors_time_series(hl_series *tau, int *ok, int *fail_k, const hl_series *psi,
+                                hl_system *sys, int n, hl_error *err);
 
 /* Closed form for a map of one dof on H = (p^2 + q^2)/2 that is linear,
  * z -> M(D) z, and a rotation (M11 = M22, M12 = -M21, M11^2 + M12^2 = 1):
@@ -141,8 +144,8 @@ int hl_errors_time_series(hl_series *tau, int *ok, int *fail_k, const hl_series 
  * constant) also the step D2 with psi_D o psi_D = psi_{D2}: r(D2) = tan(tau)
  * = 2r/(1 - r^2), D2 = 2D/(1 - c^2 D^2).  *ok = 0 when the map is not such
  * a rotation; *have_D2 = 0 when r is not c D. */
-int hl_errors_time_closed(hl_alg *tau, hl_alg *r, int *ok, hl_alg *D2, int *have_D2,
-                          const hl_alg *images, hl_system *sys, hl_error *err);
+hl_status hl_errors_time_closed(hl_alg *tau, hl_alg *r, int *ok, hl_alg *D2, int *have_D2,
+                                const hl_alg *images, hl_system *sys, hl_error *err);
 
 /* ---- invariants of a field (part 5) ------------------------------------ */
 
@@ -154,8 +157,8 @@ int hl_errors_time_closed(hl_alg *tau, hl_alg *r, int *ok, hl_alg *D2, int *have
  * coefficients (FLINT nullspace), each checked with v(phi) = 0.  *out is a
  * new vector of *count elements (hl_alg_vec_free it with *count, NULL when
  * 0).  *applicable = 0 when v is not such a polynomial field. */
-int hl_field_poly_invariants(hl_alg **out, int *count, int *applicable, const hl_alg *v,
-                             int degree, hl_system *sys, hl_error *err);
+hl_status hl_field_poly_invariants(hl_alg **out, int *count, int *applicable, const hl_alg *v,
+                                   int degree, hl_system *sys, hl_error *err);
 
 /* For a linear field (components linear forms over Q): rational first
  * integrals phi1/phi2 from Darboux polynomials, eigenvectors of v acting on
@@ -163,8 +166,8 @@ int hl_field_poly_invariants(hl_alg **out, int *count, int *applicable, const hl
  * paired within one eigenvalue (the first eigenvector divided by each
  * other); each checked with v(phi) = 0.  *applicable = 0 when v is not
  * linear. */
-int hl_field_darboux_invariants(hl_alg **out, int *count, int *applicable, const hl_alg *v,
-                                int degree, hl_system *sys, hl_error *err);
+hl_status hl_field_darboux_invariants(hl_alg **out, int *count, int *applicable, const hl_alg *v,
+                                      int degree, hl_system *sys, hl_error *err);
 
 /* ---- backward error analysis (part 6) ----------------------------------- */
 
@@ -174,15 +177,15 @@ int hl_field_darboux_invariants(hl_alg **out, int *count, int *applicable, const
  * and f_(j+1) = [D^(j+1)] (psi - exp(D F_(<=j)) z).  mf[j*2N + i], j = 1..n
  * (mf has (n+1)*2N entries; j = 0 is left zero).  psi: 2N series known to
  * O(D^(n+1)). */
-int hl_modified_field(hl_alg *mf, const hl_series *psi, hl_system *sys, int n, hl_error *err);
+hl_status hl_modified_field(hl_alg *mf, const hl_series *psi, hl_system *sys, int n, hl_error *err);
 
 /* The same from psi's series alone (implicit schemes): when every
  * coefficient is linear in (q, p) with constant coefficients, a rotation to
  * O(D^(n+1)), and the series of r = M12/(1 + M11) is c D + O(D^(n+1)),
  * *ok = 1 and tau = 2 atan(c D), r = c D, D2 = 2D/(1 - c^2 D^2): identified
  * from the series to the order computed, not proved. */
-int hl_errors_time_closed_series(hl_alg *tau, hl_alg *r, int *ok, hl_alg *D2,
-                                 const hl_series *psi, hl_system *sys, int n, hl_error *err);
+hl_status hl_errors_time_closed_series(hl_alg *tau, hl_alg *r, int *ok, hl_alg *D2,
+                                       const hl_series *psi, hl_system *sys, int n, hl_error *err);
 
 #ifdef __cplusplus
 }

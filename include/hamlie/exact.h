@@ -60,17 +60,17 @@ typedef struct hl_exact_aa {
     const hl_expr *theta, *I, *q, *p, *nu;
 } hl_exact_aa;
 
-int hl_exact_aa_read(hl_exact_aa *aa, hl_system *sys, const char *spec, hl_error *err);
+hl_status hl_exact_aa_read(hl_exact_aa *aa, hl_system *sys, const char *spec, hl_error *err);
 
 /* *ok = 0 and why = the first failing condition of: {theta, I} = 1;
  * {I, H} = 0; {theta, H} = nu(I); q, p the inverse (numerically at points in
  * all four quadrants and on the axes: an angle atan(q/p) fails for p < 0,
  * atan2(q, p) holds everywhere). */
-int hl_exact_aa_verify(int *ok, char *why, size_t whylen, const hl_exact_aa *aa,
-                       hl_system *sys, hl_error *err);
+hl_status hl_exact_aa_verify(int *ok, char *why, size_t whylen, const hl_exact_aa *aa,
+                             hl_system *sys, hl_error *err);
 
 /* The exact scheme Q = r(theta(q,p) + nu D, I(q,p)), P = s(...), unsimplified. */
-int hl_exact_aa_scheme(hl_alg *images, const hl_exact_aa *aa, hl_system *sys, hl_error *err);
+hl_status hl_exact_aa_scheme(hl_alg *images, const hl_exact_aa *aa, hl_system *sys, hl_error *err);
 
 /* ---- numeric exact flow ------------------------------------------------ */
 
@@ -78,12 +78,12 @@ typedef struct hl_exact_flow hl_exact_flow;
 
 /* quadratic H: exp(D A); otherwise 1 dof: quadrature along the orbit.
  * Symbolic parameters must have values.  HL_EUNSUP for N > 1 non-quadratic. */
-int hl_exact_flow_new(hl_exact_flow **out, hl_system *sys, hl_error *err);
+hl_status hl_exact_flow_new(hl_exact_flow **out, hl_system *sys, hl_error *err);
 void hl_exact_flow_free(hl_exact_flow *f); /* NULL is a no-op */
 
 /* z (2N) advanced in place by dt (any sign); flow is an hl_exact_flow.
  * Nonzero on failure (unbounded orbit, separatrix), z unchanged. */
-int hl_exact_flow_step(double *z, double dt, void *flow, hl_error *err);
+hl_status hl_exact_flow_step(double *z, double dt, void *flow, hl_error *err);
 
 /* The Taylor coefficients in D of the exact step at z, as the scheme builds
  * the step: coef[k*2N + i] = [D^k] psi_D(z)_i, k = 0..n.
@@ -111,8 +111,8 @@ int hl_exact_flow_step(double *z, double dt, void *flow, hl_error *err);
  * hl_exact_flow_step's. */
 #define HL_EXACT_SERIES_DEGREE 20
 #define HL_EXACT_SERIES_ACCURATE 8
-int hl_exact_flow_series(double *coef, const double *z, int n, hl_exact_flow *f,
-                         hl_error *err);
+hl_status hl_exact_flow_series(double *coef, const double *z, int n, hl_exact_flow *f,
+                               hl_error *err);
 
 /* 1 if the flow is the linear (matrix exponential) kind. */
 int hl_exact_flow_is_linear(const hl_exact_flow *f);
@@ -122,7 +122,7 @@ int hl_exact_flow_is_linear(const hl_exact_flow *f);
  * stable equilibrium (and on the orbits small enough for the linearised
  * flow), the limit of small orbits 2 pi / omega; at an unstable one,
  * +inf.  Builds the orbit table for that orbit. */
-int hl_exact_flow_period(double *T, const double *z, hl_exact_flow *f, hl_error *err);
+hl_status hl_exact_flow_period(double *T, const double *z, hl_exact_flow *f, hl_error *err);
 
 /* ---- the 1-dof exact scheme in high precision --------------------------
  * The period T of the orbit through z in Arb at about `digits` digits
@@ -140,10 +140,10 @@ int hl_exact_flow_period(double *T, const double *z, hl_exact_flow *f, hl_error 
  * orbit as hl_exact_flow_step's. */
 typedef struct hl_exact_arb hl_exact_arb;
 
-int hl_exact_arb_new(hl_exact_arb **out, hl_system *sys, double digits, hl_error *err);
+hl_status hl_exact_arb_new(hl_exact_arb **out, hl_system *sys, double digits, hl_error *err);
 void hl_exact_arb_free(hl_exact_arb *f); /* NULL is a no-op */
-int hl_exact_arb_period(arb_t T, arb_srcptr z, hl_exact_arb *f, hl_error *err);
-int hl_exact_arb_step(arb_ptr z, const arb_t dt, hl_exact_arb *f, hl_error *err);
+hl_status hl_exact_arb_period(arb_t T, arb_srcptr z, hl_exact_arb *f, hl_error *err);
+hl_status hl_exact_arb_step(arb_ptr z, const arb_t dt, hl_exact_arb *f, hl_error *err);
 
 #ifdef __cplusplus
 }

@@ -104,7 +104,7 @@ int hl_fun_arity(hl_fun f);
  * 10^5 terms (a chain 10^5 deep) is fine. */
 #define HL_PARSE_MAX_DEPTH 200
 #define HL_PARSE_MAX_NODES 1000000
-int hl_parse(const hl_expr **out, hl_pool *pool, const char *src, hl_error *err);
+hl_status hl_parse(const hl_expr **out, hl_pool *pool, const char *src, hl_error *err);
 
 /* One item of a ';'-separated list: "lhs = rhs", or a bare expression
  * (then rhs is NULL).  pos is the byte offset where the item starts. */
@@ -114,8 +114,8 @@ typedef struct hl_eqn {
 } hl_eqn;
 
 /* Parse a list of at most max items into out[0..*n-1]. */
-int hl_parse_list(hl_eqn *out, int max, int *n, hl_pool *pool, const char *src,
-                  hl_error *err);
+hl_status hl_parse_list(hl_eqn *out, int max, int *n, hl_pool *pool, const char *src,
+                        hl_error *err);
 
 /* Byte offset of the first token in src that is the symbol `name`, or -1.
  * Lets later layers point at a symbol they reject ("unknown symbol 'z'"). */
@@ -204,8 +204,8 @@ void hl_expr_taylor(const hl_expr **out, hl_pool *pool, const hl_expr *e, const 
 /* Evaluate in double with the given symbol values.  Errors (HL_EINVAL) on a
  * symbol without a value; the result may be inf or nan, which the caller
  * checks.  A reference evaluator for tests: tape.h is the fast path. */
-int hl_expr_eval_d(double *out, const hl_expr *e, int n, const char *const *names,
-                   const double *vals, hl_error *err);
+hl_status hl_expr_eval_d(double *out, const hl_expr *e, int n, const char *const *names,
+                         const double *vals, hl_error *err);
 
 #ifdef __cplusplus
 }

@@ -56,7 +56,7 @@ typedef struct hl_flow hl_flow;
  * smaller cannot be reached in double).  HL_EINVAL if the tape is not
  * square or a tolerance is out of range. */
 #define HL_FLOW_MIN_RTOL (DBL_EPSILON / 4)
-int hl_flow_new(hl_flow **out, hl_tape *f, double atol, double rtol, hl_error *err);
+hl_status hl_flow_new(hl_flow **out, hl_tape *f, double atol, double rtol, hl_error *err);
 void hl_flow_free(hl_flow *flow); /* NULL is a no-op */
 
 int hl_flow_order(const hl_flow *flow);
@@ -77,7 +77,7 @@ int hl_flow_native_active(const hl_flow *flow);
 
 /* Integrate from *t to t1 (either direction); z (n values) in and out.
  * On success *t == t1. */
-int hl_flow_evolve(hl_flow *flow, double *t, double t1, double *z, hl_error *err);
+hl_status hl_flow_evolve(hl_flow *flow, double *t, double t1, double *z, hl_error *err);
 
 /* Called at each output time with the state there; a non-zero return stops
  * the run, and hl_flow_run returns that value. */
@@ -85,12 +85,12 @@ typedef int (*hl_flow_fn)(double t, const double *z, void *arg);
 
 /* Start at (t0, z0) and call fn at ts[0..n-1], which must be monotone in
  * the direction of ts[n-1] - t0 (ts[0] may equal t0). */
-int hl_flow_run(hl_flow *flow, double t0, const double *z0, const double *ts, int n,
-                hl_flow_fn fn, void *arg, hl_error *err);
+hl_status hl_flow_run(hl_flow *flow, double t0, const double *z0, const double *ts, int n,
+                      hl_flow_fn fn, void *arg, hl_error *err);
 
 /* The same, storing out[i*dim + j] = z_j(ts[i]). */
-int hl_flow_eval_at(hl_flow *flow, double t0, const double *z0, const double *ts, int n,
-                    double *out, hl_error *err);
+hl_status hl_flow_eval_at(hl_flow *flow, double t0, const double *z0, const double *ts, int n,
+                          double *out, hl_error *err);
 
 /* ---- Arb ---------------------------------------------------------------
  * The same integrator in Arb at about digits decimal digits (tolerance
@@ -102,19 +102,19 @@ int hl_flow_eval_at(hl_flow *flow, double t0, const double *z0, const double *ts
 
 typedef struct hl_flow_arb hl_flow_arb;
 
-int hl_flow_arb_new(hl_flow_arb **out, hl_tape *f, double digits, hl_error *err);
+hl_status hl_flow_arb_new(hl_flow_arb **out, hl_tape *f, double digits, hl_error *err);
 void hl_flow_arb_free(hl_flow_arb *flow); /* NULL is a no-op */
 
 int hl_flow_arb_order(const hl_flow_arb *flow);
 slong hl_flow_arb_prec(const hl_flow_arb *flow);
 long hl_flow_arb_nsteps(const hl_flow_arb *flow);
 
-int hl_flow_arb_evolve(hl_flow_arb *flow, arb_t t, const arb_t t1, arb_ptr z, hl_error *err);
+hl_status hl_flow_arb_evolve(hl_flow_arb *flow, arb_t t, const arb_t t1, arb_ptr z, hl_error *err);
 
 typedef int (*hl_flow_arb_fn)(const arb_t t, arb_srcptr z, void *arg);
 
-int hl_flow_arb_run(hl_flow_arb *flow, const arb_t t0, arb_srcptr z0, arb_srcptr ts, int n,
-                    hl_flow_arb_fn fn, void *arg, hl_error *err);
+hl_status hl_flow_arb_run(hl_flow_arb *flow, const arb_t t0, arb_srcptr z0, arb_srcptr ts, int n,
+                          hl_flow_arb_fn fn, void *arg, hl_error *err);
 
 #ifdef __cplusplus
 }

@@ -46,7 +46,7 @@ typedef struct hl_system_spec {
     const char *step;         /* the step's name, or NULL for "D" */
 } hl_system_spec;
 
-int hl_system_new(hl_system **out, const hl_system_spec *spec, hl_error *err);
+hl_status hl_system_new(hl_system **out, const hl_system_spec *spec, hl_error *err);
 void hl_system_free(hl_system *sys); /* NULL is a no-op */
 
 int hl_system_ndof(const hl_system *sys);
@@ -74,29 +74,29 @@ int hl_system_var_D(const hl_system *sys);
 
 /* Read a formula of this system: its symbols must be coordinates, momenta,
  * symbolic parameters, the step, or H.  Set parameters are substituted. */
-int hl_system_read(hl_alg *out, hl_system *sys, const char *formula, hl_error *err);
+hl_status hl_system_read(hl_alg *out, hl_system *sys, const char *formula, hl_error *err);
 
 /* The same for a function of the phase variables (an integral, a bracket's
  * argument, an observable): the step is refused, pointing at it. */
-int hl_system_read_phase(hl_alg *out, hl_system *sys, const char *formula, hl_error *err);
+hl_status hl_system_read_phase(hl_alg *out, hl_system *sys, const char *formula, hl_error *err);
 
 /* Read a map "X = f; P = g" giving the image of every phase variable.  An
  * image is matched to its variable by name (the left side is the variable's
  * name in upper case, or the name followed by a prime: X or x'); else the
  * items are taken in the order q_1..q_N, p_1..p_N.  images has 2N entries. */
-int hl_system_read_map(hl_alg *images, hl_system *sys, const char *map, hl_error *err);
+hl_status hl_system_read_map(hl_alg *images, hl_system *sys, const char *map, hl_error *err);
 
 /* ---- §2: bracket and generator --------------------------------------- */
 
 /* {a,b} = sum_j da/dq_j db/dp_j - db/dq_j da/dp_j */
-int hl_bracket(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_system *sys, hl_error *err);
+hl_status hl_bracket(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_system *sys, hl_error *err);
 
 /* The evolution generator g = sum_j xi_j d/dq_j + eta_j d/dp_j with
  * xi_j = dH/dp_j, eta_j = -dH/dq_j (arrays of N elements each). */
-int hl_generator(hl_alg *xi, hl_alg *eta, hl_system *sys, hl_error *err);
+hl_status hl_generator(hl_alg *xi, hl_alg *eta, hl_system *sys, hl_error *err);
 
 /* g o phi = {phi, H} */
-int hl_generator_apply(hl_alg *r, const hl_alg *phi, hl_system *sys, hl_error *err);
+hl_status hl_generator_apply(hl_alg *r, const hl_alg *phi, hl_system *sys, hl_error *err);
 
 /* Lie series.  terms[k] = g^k phi for k = 0..order (order+1 entries).
  * Refuses (HL_ELIMIT) an order above HL_LIE_MAX_ORDER, and a series whose
@@ -105,36 +105,36 @@ int hl_generator_apply(hl_alg *r, const hl_alg *phi, hl_system *sys, hl_error *e
  * request that would not fit is refused at once, saying which order would. */
 #define HL_LIE_MAX_ORDER 200
 #define HL_LIE_MAX_TERMS 2000000L
-int hl_lie_terms(hl_alg *terms, const hl_alg *phi, int order, hl_system *sys, hl_error *err);
+hl_status hl_lie_terms(hl_alg *terms, const hl_alg *phi, int order, hl_system *sys, hl_error *err);
 
 /* The same, calling progress(k, order, arg) after each g^k phi (may be
  * NULL); a non-zero return stops it (HL_ESTOP, terms[0..k] computed). */
-int hl_lie_terms_watched(hl_alg *terms, const hl_alg *phi, int order, hl_system *sys,
-                         hl_progress_fn progress, void *arg, hl_error *err);
+hl_status hl_lie_terms_watched(hl_alg *terms, const hl_alg *phi, int order, hl_system *sys,
+                               hl_progress_fn progress, void *arg, hl_error *err);
 
 /* exp(D g) phi truncated after D^order: sum_k D^k/k! g^k phi. */
-int hl_lie_series(hl_alg *r, const hl_alg *phi, int order, hl_system *sys, hl_error *err);
+hl_status hl_lie_series(hl_alg *r, const hl_alg *phi, int order, hl_system *sys, hl_error *err);
 
 /* ---- §2: checks -------------------------------------------------------- */
 
 /* Is I an integral of motion ({I,H} = 0)?  The bracket is returned in br
  * (if not NULL) so the caller can show what is left over. */
-int hl_check_integral(int *yes, hl_alg *br, const hl_alg *I, hl_system *sys, hl_error *err);
+hl_status hl_check_integral(int *yes, hl_alg *br, const hl_alg *I, hl_system *sys, hl_error *err);
 
 /* Brackets {f_i, f_j} for i < j, row-major into the n x n matrix br
  * (antisymmetric; diagonal zero).  *all_zero says whether they are in involution. */
-int hl_check_involution(int *all_zero, hl_alg *br, const hl_alg *f, int n, hl_system *sys,
-                        hl_error *err);
+hl_status hl_check_involution(int *all_zero, hl_alg *br, const hl_alg *f, int n, hl_system *sys,
+                              hl_error *err);
 
 /* Rank of the Jacobian d(f_1..f_n)/d(q,p) over the field of rational
  * functions (exact elimination; the numeric zero test may be used, see alg.h). */
-int hl_jacobian_rank(int *rank, const hl_alg *f, int n, hl_system *sys, hl_error *err);
+hl_status hl_jacobian_rank(int *rank, const hl_alg *f, int n, hl_system *sys, hl_error *err);
 
 /* The 2N x 2N matrix of brackets {Z_a, Z_b} of a map's images Z = (Q, P)
  * (row-major).  The map is canonical when it equals J = [[0, I], [-I, 0]];
  * *canonical says whether it does, for every value of D. */
-int hl_check_canonical(int *canonical, hl_alg *br, const hl_alg *images, hl_system *sys,
-                       hl_error *err);
+hl_status hl_check_canonical(int *canonical, hl_alg *br, const hl_alg *images, hl_system *sys,
+                             hl_error *err);
 
 #ifdef __cplusplus
 }

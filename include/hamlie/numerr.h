@@ -45,8 +45,8 @@ typedef struct hl_numerr {
  * the numerator does not cancel; HL_ENOCONV when an implicit scheme's linear
  * system at some order is singular at z.  Fills r (hl_numerr_clear after,
  * also on failure). */
-int hl_numerr_compute(hl_numerr *r, const hl_scheme *s, const double *z, int n,
-                      hl_error *err);
+hl_status hl_numerr_compute(hl_numerr *r, const hl_scheme *s, const double *z, int n,
+                            hl_error *err);
 void hl_numerr_clear(hl_numerr *r);
 
 /* The same analysis for a stepper that is not a scheme of the scheme
@@ -58,8 +58,8 @@ void hl_numerr_clear(hl_numerr *r);
  * of log max_i(|psi_k,i| + |flow_k,i|) over k = 0..n (the same where that
  * is concave in k, as for geometric or factorial decay).  K needs the
  * stepper at points other than z and is not computed: r->K is NaN. */
-int hl_numerr_from_series(hl_numerr *r, hl_system *sys, const double *z, const double *psi,
-                          int n, hl_error *err);
+hl_status hl_numerr_from_series(hl_numerr *r, hl_system *sys, const double *z, const double *psi,
+                                int n, hl_error *err);
 
 #ifdef __cplusplus
 }

@@ -51,7 +51,7 @@ typedef struct hl_run hl_run;
  * builds a fresh stepper, so that the step numbers in its messages count
  * from the start of that run.
  * HL_EINVAL for a system without H or with parameters that have no value. */
-int hl_run_new(hl_run **out, hl_system *sys, const hl_scheme *scheme, hl_error *err);
+hl_status hl_run_new(hl_run **out, hl_system *sys, const hl_scheme *scheme, hl_error *err);
 void hl_run_free(hl_run *r); /* NULL is a no-op */
 
 /* A run of a stepper that the scheme language does not state (the exact
@@ -61,13 +61,13 @@ void hl_run_free(hl_run *r); /* NULL is a no-op */
  * observers, sigma against the reference, orders, failures with the step
  * and time — as for a scheme (hl_run_fixed; hl_run_adaptive is not for
  * it).  arg is borrowed. */
-typedef int (*hl_run_step_fn)(double *z, double dt, void *arg, hl_error *err);
-int hl_run_new_stepper(hl_run **out, hl_system *sys, hl_run_step_fn step, void *arg,
-                       hl_error *err);
+typedef hl_status (*hl_run_step_fn)(double *z, double dt, void *arg, hl_error *err);
+hl_status hl_run_new_stepper(hl_run **out, hl_system *sys, hl_run_step_fn step, void *arg,
+                             hl_error *err);
 
 /* Add an observer: a formula in the system's variables, its parameters and
  * H.  Errors point into formula. */
-int hl_run_observe(hl_run *r, const char *formula, hl_error *err);
+hl_status hl_run_observe(hl_run *r, const char *formula, hl_error *err);
 int hl_run_nobservers(const hl_run *r);
 
 /* The reference trajectory: on (default) or off, and its tolerance
@@ -95,22 +95,22 @@ void hl_run_set_progress(hl_run *r, hl_progress_fn fn, void *arg);
  * once: a missing one is named.  A value that is not finite, or that
  * underflows in double (1e-400, below DBL_MIN but not 0), is refused
  * (HL_EDOM), the error pointing at it in init. */
-int hl_run_init_values(double *z, hl_system *sys, const char *init, hl_error *err);
+hl_status hl_run_init_values(double *z, hl_system *sys, const char *init, hl_error *err);
 
 /* The same in Arb at prec bits, from the exact form of each formula. */
-int hl_run_init_values_arb(arb_ptr z, hl_system *sys, const char *init, slong prec,
-                           hl_error *err);
+hl_status hl_run_init_values_arb(arb_ptr z, hl_system *sys, const char *init, slong prec,
+                                 hl_error *err);
 
 /* Is the initial point in H's domain?  HL_EDOM, with the point, when H is
  * not finite there (Kepler at the origin, log(q) at q < 0); the drivers
  * check it before their first row, and a caller that writes anything
  * before the run (a header) checks it first.  The observers may have poles
  * (x/p at p = 0): they are not checked. */
-int hl_run_check_start(hl_run *r, const double *z0, hl_error *err);
-int hl_run_check_start_arb(hl_run *r, arb_srcptr z0, slong prec, hl_error *err);
+hl_status hl_run_check_start(hl_run *r, const double *z0, hl_error *err);
+hl_status hl_run_check_start_arb(hl_run *r, arb_srcptr z0, slong prec, hl_error *err);
 
 /* The number of steps t/dt, with the checks above. */
-int hl_run_nsteps(long *n, double dt, double t, hl_error *err);
+hl_status hl_run_nsteps(long *n, double dt, double t, hl_error *err);
 
 typedef struct hl_run_row {
     long k;            /* step index */
@@ -140,13 +140,12 @@ typedef struct hl_run_stats {
 
 /* z0: 2N values (not modified).  stats may be NULL; its z is the run's
  * (hl_run_state). */
-int hl_run_fixed(hl_run *r, const double *z0, double dt, double t, long every,
-                 hl_run_fn fn, void *arg, hl_run_stats *stats, hl_error *err);
+hl_status hl_run_fixed(hl_run *r, const double *z0, double dt, double t, long every, hl_run_fn fn,
+                       void *arg, hl_run_stats *stats, hl_error *err);
 
 /* The adaptive Taylor integrator, rows at k*dt (see above). */
-int hl_run_adaptive(hl_run *r, const double *z0, double tol, double dt, double t,
-                    long every, hl_run_fn fn, void *arg, hl_run_stats *stats,
-                    hl_error *err);
+hl_status hl_run_adaptive(hl_run *r, const double *z0, double tol, double dt, double t, long every,
+                          hl_run_fn fn, void *arg, hl_run_stats *stats, hl_error *err);
 
 /* ---- Arb: the adaptive run at about `digits` decimal digits --------------
  * hl_flow_arb (flow.h) with rows at t_k = T k / n (T from its text, exact
@@ -162,9 +161,9 @@ typedef struct hl_run_row_arb {
 
 typedef int (*hl_run_arb_fn)(const hl_run_row_arb *row, void *arg);
 
-int hl_run_adaptive_arb(hl_run *r, arb_srcptr z0, double digits, const char *T, long n,
-                        long every, hl_run_arb_fn fn, void *arg, hl_run_stats *stats,
-                        hl_error *err);
+hl_status hl_run_adaptive_arb(hl_run *r, arb_srcptr z0, double digits, const char *T, long n,
+                              long every, hl_run_arb_fn fn, void *arg, hl_run_stats *stats,
+                              hl_error *err);
 
 /* The working precision in bits for `digits` decimal digits (as flow.h's). */
 slong hl_run_arb_prec(double digits);
@@ -188,8 +187,8 @@ const double *hl_run_state(const hl_run *r);
  * (reference on), errmax[i] = max over steps of |z_k - z(t_k)|_2 (errfinal[i]
  * the same at the final time; either may be NULL), and for i >= 1
  * order[i] = log(errmax[i-1]/errmax[i]) / log(dts[i-1]/dts[i]) (order[0] = NaN). */
-int hl_run_orders(double *errmax, double *errfinal, double *order, hl_run *r,
-                  const double *z0, const double *dts, int n, double t, hl_error *err);
+hl_status hl_run_orders(double *errmax, double *errfinal, double *order, hl_run *r,
+                        const double *z0, const double *dts, int n, double t, hl_error *err);
 
 #ifdef __cplusplus
 }

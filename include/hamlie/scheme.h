@@ -135,8 +135,8 @@ const hl_scheme_info *hl_scheme_lookup(const char *name);
  * ignored by the others.  HL_EINVAL for an unknown name (the message lists
  * the catalog, or the range of N), for a system without H, and for an
  * oscillator-only scheme on another system. */
-int hl_scheme_new(hl_scheme **out, const char *name, int param, hl_system *sys,
-                  hl_error *err);
+hl_status hl_scheme_new(hl_scheme **out, const char *name, int param, hl_system *sys,
+                        hl_error *err);
 
 /* The language text of a catalog scheme that has one (NULL for the C
  * generators: rk4, gauss*, lie, yoshida4, itoh-abe, gonzalez). */
@@ -145,32 +145,31 @@ const char *hl_scheme_text(const char *name);
 /* ---- user schemes ------------------------------------------------------ */
 
 /* A definition in the scheme language (above), for sys. */
-int hl_scheme_from_text(hl_scheme **out, const char *def, hl_system *sys, hl_error *err);
+hl_status hl_scheme_from_text(hl_scheme **out, const char *def, hl_system *sys, hl_error *err);
 
 /* A map "X = ...; P = ..." or equations "(X-x)/D = (P+p)/2; ..." written
  * with the system's own names: the next point is the variable's name in
  * upper case (or first letter upper: Px) or followed by a prime (x'); "H"
  * is the Hamiltonian.  A map must give each image once, as "image = f"; the
  * right sides may use images given before (X = ...; P = p - D*X). */
-int hl_scheme_from_map(hl_scheme **out, const char *map, hl_system *sys, hl_error *err);
-int hl_scheme_from_equations(hl_scheme **out, const char *eqs, hl_system *sys,
-                             hl_error *err);
+hl_status hl_scheme_from_map(hl_scheme **out, const char *map, hl_system *sys, hl_error *err);
+hl_status hl_scheme_from_equations(hl_scheme **out, const char *eqs, hl_system *sys, hl_error *err);
 
 /* ---- generators -------------------------------------------------------- */
 
 /* Runge-Kutta on z' = J grad H from a Butcher tableau with s stages:
  * A[i*s + j] and b[i] are expressions in the expression language ("1/4",
  * "1/4 - sqrt(3)/6").  Stage unknowns k_i (dq) and l_i (dp). */
-int hl_scheme_rk(hl_scheme **out, const char *name, int s, const char *const *A,
-                 const char *const *b, hl_system *sys, hl_error *err);
+hl_status hl_scheme_rk(hl_scheme **out, const char *name, int s, const char *const *A,
+                       const char *const *b, hl_system *sys, hl_error *err);
 
 /* The truncated Lie series Q = sum_{k<=n} D^k/k! g^k q (and P). */
-int hl_scheme_lie(hl_scheme **out, int n, hl_system *sys, hl_error *err);
+hl_status hl_scheme_lie(hl_scheme **out, int n, hl_system *sys, hl_error *err);
 
 /* The composition psi_{c_r D} o ... o psi_{c_1 D} of instances of the
  * language scheme `text` (c_i expressions: "1/(2 - 2^(1/3))"). */
-int hl_scheme_compose(hl_scheme **out, const char *name, const char *text, int r,
-                      const char *const *c, hl_system *sys, hl_error *err);
+hl_status hl_scheme_compose(hl_scheme **out, const char *name, const char *text, int r,
+                            const char *const *c, hl_system *sys, hl_error *err);
 
 /* The exact flow exp(D g) z in closed form when the field is affine (H of
  * degree <= 2 in the phase variables; parameters allowed) and H couples no
@@ -183,8 +182,8 @@ int hl_scheme_compose(hl_scheme **out, const char *name, const char *text, int r
  * quadratic, HL_EUNSUP (the reason named) for coupled pairs otherwise.
  * _map writes the same as a map "x' = ...; p' = ..." (hl_scheme_from_map
  * reads it back); *map is malloc'd. */
-int hl_scheme_linear_flow(hl_alg *images, hl_system *sys, hl_error *err);
-int hl_scheme_linear_flow_map(char **map, hl_system *sys, hl_error *err);
+hl_status hl_scheme_linear_flow(hl_alg *images, hl_system *sys, hl_error *err);
+hl_status hl_scheme_linear_flow_map(char **map, hl_system *sys, hl_error *err);
 /* 1 when hl_scheme_linear_flow succeeds for sys (the catalog's "exact"
  * applies), else 0. */
 int hl_scheme_linear_flow_applies(hl_system *sys);
@@ -193,7 +192,7 @@ int hl_scheme_linear_flow_applies(hl_system *sys);
  * sqrt(5/2 - sqrt(13)/2); elliptic w = sqrt(sqrt(13)/2 + 5/2)" (w the
  * frequency, or the rate of a hyperbolic mode; "free" for w = 0), malloc'd.
  * HL_EUNSUP when H does not couple its pairs or has no closed form here. */
-int hl_scheme_linear_modes(char **text, hl_system *sys, hl_error *err);
+hl_status hl_scheme_linear_modes(char **text, hl_system *sys, hl_error *err);
 
 /* ---- the symbolic reading ---------------------------------------------- */
 
@@ -203,7 +202,7 @@ int hl_scheme_linear_modes(char **text, hl_system *sys, hl_error *err);
  * Errors (HL_EINVAL): not the identity at D = 0, not determined at D = 0,
  * and, when the system has H and n >= 2, not consistent: the D^1
  * coefficient is not the generator (dH/dp, -dH/dq). */
-int hl_scheme_expand(hl_series *Z, const hl_scheme *s, int n, hl_error *err);
+hl_status hl_scheme_expand(hl_series *Z, const hl_scheme *s, int n, hl_error *err);
 
 /* ---- the numeric reading -------------------------------------------------- */
 
@@ -228,7 +227,7 @@ int hl_scheme_expand(hl_series *Z, const hl_scheme *s, int n, hl_error *err);
 
 typedef struct hl_scheme_stepper hl_scheme_stepper;
 
-int hl_scheme_stepper_new(hl_scheme_stepper **out, const hl_scheme *s, hl_error *err);
+hl_status hl_scheme_stepper_new(hl_scheme_stepper **out, const hl_scheme *s, hl_error *err);
 void hl_scheme_stepper_free(hl_scheme_stepper *st); /* NULL is a no-op */
 
 /* One step: z[0..N-1] = q, z[N..2N-1] = p are replaced by (Q, P).  t is the
@@ -236,7 +235,7 @@ void hl_scheme_stepper_free(hl_scheme_stepper *st); /* NULL is a no-op */
  * when Newton does not converge in HL_SCHEME_NEWTON_MAX iterations (the
  * message names the step and the time), HL_EDOM when a value is not
  * finite; z is left untouched on failure. */
-int hl_scheme_step(hl_scheme_stepper *st, double *z, double D, double t, hl_error *err);
+hl_status hl_scheme_step(hl_scheme_stepper *st, double *z, double D, double t, hl_error *err);
 
 /* Compile the stepper's tapes to machine code (tape.h: hl_tape_jit) when
  * a run of nsteps steps evaluates each of them more often than its
@@ -264,7 +263,7 @@ void hl_scheme_stepper_restart(hl_scheme_stepper *st, long steps);
  * expressions the stepper compiles, in the system's pool.  For callers that
  * compile the step together with other expressions (the runner fuses it
  * with H).  HL_EINVAL for an implicit scheme. */
-int hl_scheme_step_exprs(const hl_expr **Z, const hl_scheme *s, hl_error *err);
+hl_status hl_scheme_step_exprs(const hl_expr **Z, const hl_scheme *s, hl_error *err);
 
 #ifdef __cplusplus
 }

@@ -70,15 +70,16 @@ void hl_series_sub(hl_series *r, const hl_series *a, const hl_series *b, hl_alg_
 void hl_series_neg(hl_series *r, const hl_series *a, hl_alg_ctx *ctx);
 void hl_series_mul(hl_series *r, const hl_series *a, const hl_series *b, hl_alg_ctx *ctx);
 /* HL_EDOM when b's constant term is zero. */
-int hl_series_div(hl_series *r, const hl_series *a, const hl_series *b, hl_alg_ctx *ctx,
-                  hl_error *err);
+hl_status hl_series_div(hl_series *r, const hl_series *a, const hl_series *b, hl_alg_ctx *ctx,
+                        hl_error *err);
 void hl_series_scalar_mul(hl_series *r, const hl_series *a, const hl_alg *c, hl_alg_ctx *ctx);
 void hl_series_scalar_mul_fmpq(hl_series *r, const hl_series *a, const fmpq_t c, hl_alg_ctx *ctx);
 /* a^e for an integer e (e < 0 needs a nonzero constant term). */
-int hl_series_pow_si(hl_series *r, const hl_series *a, long e, hl_alg_ctx *ctx, hl_error *err);
+hl_status hl_series_pow_si(hl_series *r, const hl_series *a, long e, hl_alg_ctx *ctx,
+                           hl_error *err);
 /* a^e for a rational e: a non-integer e needs a nonzero constant term. */
-int hl_series_pow_fmpq(hl_series *r, const hl_series *a, const fmpq_t e, hl_alg_ctx *ctx,
-                       hl_error *err);
+hl_status hl_series_pow_fmpq(hl_series *r, const hl_series *a, const fmpq_t e, hl_alg_ctx *ctx,
+                             hl_error *err);
 
 /* d/dD (n drops by one), a(-D), and D^k a (n grows by k). */
 void hl_series_derivative(hl_series *r, const hl_series *a, hl_alg_ctx *ctx);
@@ -88,7 +89,8 @@ void hl_series_shift(hl_series *r, const hl_series *a, int k, hl_alg_ctx *ctx);
 /* f(a) for an expression-language function, by the Taylor recurrences
  * (Hairer-Norsett-Wanner I.8, Jorba-Zou): only f at the constant term goes
  * through the algebra layer (hl_alg_apply); the rest is exact arithmetic. */
-int hl_series_apply(hl_series *r, hl_fun f, const hl_series *a, hl_alg_ctx *ctx, hl_error *err);
+hl_status hl_series_apply(hl_series *r, hl_fun f, const hl_series *a, hl_alg_ctx *ctx,
+                          hl_error *err);
 
 /* ---- conversion ------------------------------------------------------- */
 
@@ -99,8 +101,8 @@ void hl_series_to_alg(hl_alg *r, const hl_series *s, int var, hl_alg_ctx *ctx);
 /* Expand a in base symbol var to O(var^n).  a rational in var with atoms free
  * of var is expanded by series division; otherwise (sin(D), sqrt(1+D)) by
  * Taylor mode on a's expression.  HL_EDOM for a pole at var = 0. */
-int hl_series_from_alg(hl_series *r, const hl_alg *a, int var, int n, hl_alg_ctx *ctx,
-                       hl_error *err);
+hl_status hl_series_from_alg(hl_series *r, const hl_alg *a, int var, int n, hl_alg_ctx *ctx,
+                             hl_error *err);
 
 /* ---- Taylor mode on expressions --------------------------------------- */
 
@@ -110,8 +112,8 @@ int hl_series_from_alg(hl_series *r, const hl_alg *a, int var, int n, hl_alg_ctx
  * layer, integer powers as products so they accept a zero constant term) and
  * run coefficient by coefficient.  HL_EINVAL naming a symbol with no value;
  * HL_EDOM as for the functions above. */
-int hl_series_eval_expr(hl_series *out, const hl_expr *e, int nsym, const char *const *names,
-                        const hl_series *vals, int n, hl_alg_ctx *ctx, hl_error *err);
+hl_status hl_series_eval_expr(hl_series *out, const hl_expr *e, int nsym, const char *const *names,
+                              const hl_series *vals, int n, hl_alg_ctx *ctx, hl_error *err);
 
 /* ---- schemes ------------------------------------------------------------ */
 
@@ -134,35 +136,36 @@ int hl_series_eval_expr(hl_series *out, const hl_expr *e, int nsym, const char *
  * through an atom (sin(D) (X - x - D p) = 0) is divided by D in the series
  * sense.  Both checks use hl_alg_is_zero, so they may be numeric: see
  * hl_alg_ctx_numeric_used. */
-int hl_series_solve(hl_series *Z, int m, const hl_eqn *eqs, const char *const *unknowns,
-                    const hl_alg *z0, const char *step, int n, hl_alg_ctx *ctx, hl_error *err);
+hl_status hl_series_solve(hl_series *Z, int m, const hl_eqn *eqs, const char *const *unknowns,
+                          const hl_alg *z0, const char *step, int n, hl_alg_ctx *ctx,
+                          hl_error *err);
 
 /* Lie series of phi: r->c[k] = g^k phi / k!, k < n, for the generator of H
  * with canonical pairs (qvars[j], pvars[j]), j < ndof (base-symbol indices):
  *   g f = sum_j df/dq_j dH/dp_j - df/dp_j dH/dq_j. */
-int hl_series_lie(hl_series *r, const hl_alg *phi, const hl_alg *H, int ndof, const int *qvars,
-                  const int *pvars, int n, hl_alg_ctx *ctx, hl_error *err);
+hl_status hl_series_lie(hl_series *r, const hl_alg *phi, const hl_alg *H, int ndof,
+                        const int *qvars, const int *pvars, int n, hl_alg_ctx *ctx, hl_error *err);
 
 /* Composition of series maps: r[i] = A[i](z; D) with base symbol vars[j]
  * replaced by the series B[j] (j < nvars), i < m, to O(D^n) where n is the
  * least of the n of the A[i] and B[j].  var_D is the base symbol of the step
  * (the coefficients of A and B must be free of it); base symbols other than
  * vars stand for themselves. */
-int hl_series_compose(hl_series *r, int m, const hl_series *A, int nvars, const int *vars,
-                      const hl_series *B, int var_D, hl_alg_ctx *ctx, hl_error *err);
+hl_status hl_series_compose(hl_series *r, int m, const hl_series *A, int nvars, const int *vars,
+                            const hl_series *B, int var_D, hl_alg_ctx *ctx, hl_error *err);
 
 /* K(D) = psi_{-D} o d/dD psi_D of §4 (eq. Err): K[i] = (d psi_i/dD)
  * evaluated at z = psi(z; -D), for a map given by m = 2N series psi[i], the
  * image of base symbol vars[i].  n of K is one less than that of psi. */
-int hl_series_scheme_K(hl_series *K, int m, const hl_series *psi, const int *vars, int var_D,
-                       hl_alg_ctx *ctx, hl_error *err);
+hl_status hl_series_scheme_K(hl_series *K, int m, const hl_series *psi, const int *vars, int var_D,
+                             hl_alg_ctx *ctx, hl_error *err);
 
 /* The same within a size budget: HL_ELIMIT once the coefficients of the
  * composition's work, all together, pass max_terms terms (0: no limit),
  * checked as each is formed.  K(D) of a scheme whose expansion is large (Gonzalez on
  * Henon-Heiles) swells past any useful size. */
-int hl_series_scheme_K_bounded(hl_series *K, int m, const hl_series *psi, const int *vars,
-                               int var_D, long max_terms, hl_alg_ctx *ctx, hl_error *err);
+hl_status hl_series_scheme_K_bounded(hl_series *K, int m, const hl_series *psi, const int *vars,
+                                     int var_D, long max_terms, hl_alg_ctx *ctx, hl_error *err);
 
 #ifdef __cplusplus
 }

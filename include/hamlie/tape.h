@@ -101,8 +101,8 @@ typedef struct hl_tape hl_tape;
  * other symbol is an error (HL_EINVAL, "unknown symbol 'z'").  Constant
  * subtrees are folded; one that is not finite in double (1/0, log(0)) is
  * HL_EDOM. */
-int hl_tape_new(hl_tape **out, const hl_expr *const *outs, int nout,
-                const char *const *inputs, int nin, hl_error *err);
+hl_status hl_tape_new(hl_tape **out, const hl_expr *const *outs, int nout,
+                      const char *const *inputs, int nin, hl_error *err);
 void hl_tape_free(hl_tape *tape); /* NULL is a no-op */
 
 int hl_tape_ninputs(const hl_tape *tape);
@@ -118,10 +118,9 @@ char *hl_tape_print(const hl_tape *tape);
 /* The Hamiltonian vector field of H with N degrees of freedom: inputs
  * q_1..q_N, p_1..p_N; outputs dH/dp_1..dH/dp_N, -dH/dq_1..-dH/dq_N.  The
  * parameters params[i] are replaced by the expressions vals[i] first. */
-int hl_tape_hamiltonian(hl_tape **out, hl_pool *pool, const hl_expr *H, int N,
-                        const char *const *q, const char *const *p, int nparams,
-                        const char *const *params, const hl_expr *const *vals,
-                        hl_error *err);
+hl_status hl_tape_hamiltonian(hl_tape **out, hl_pool *pool, const hl_expr *H, int N,
+                              const char *const *q, const char *const *p, int nparams,
+                              const char *const *params, const hl_expr *const *vals, hl_error *err);
 
 /* ---- evaluation ------------------------------------------------------- */
 
@@ -140,8 +139,8 @@ void hl_tape_taylor_arb(arb_ptr out, arb_srcptr in, int order, slong prec, hl_ta
  * z[i*(order+1) + 0] holds z_i(0) on entry; on return z[i*(order+1) + k]
  * holds z_i^[k] for k = 0..order.  Cost O(order^2) per instruction.
  * HL_EINVAL if the tape is not square. */
-int hl_tape_taylor_ode_d(double *z, int order, hl_tape *tape, hl_error *err);
-int hl_tape_taylor_ode_arb(arb_ptr z, int order, slong prec, hl_tape *tape, hl_error *err);
+hl_status hl_tape_taylor_ode_d(double *z, int order, hl_tape *tape, hl_error *err);
+hl_status hl_tape_taylor_ode_arb(arb_ptr z, int order, slong prec, hl_tape *tape, hl_error *err);
 
 /* ---- native code (opt-in) ------------------------------------------------
  * Compile the Taylor-ODE recursion at this order to machine code: one
@@ -160,7 +159,7 @@ int hl_tape_taylor_ode_arb(arb_ptr z, int order, slong prec, hl_tape *tape, hl_e
  * backend works (the interpreter keeps working); HL_EIO if the temporary
  * files cannot be written; HL_ELIMIT for a program that would be too large
  * (instructions * order^2 / 2 > 4e6 terms). */
-int hl_tape_native(hl_tape *tape, int order, hl_error *err);
+hl_status hl_tape_native(hl_tape *tape, int order, hl_error *err);
 void hl_tape_native_clear(hl_tape *tape); /* back to the interpreter */
 
 /* ---- machine code for point evaluation (opt-in) ---------------------------
@@ -180,7 +179,7 @@ void hl_tape_native_clear(hl_tape *tape); /* back to the interpreter */
  * understood by libgccjit); options may change the last bits, and an
  * option libgccjit rejects makes it print to stderr and fail.
  * hl_tape_eval_arb and Taylor mode are not affected. */
-int hl_tape_jit(hl_tape *tape, hl_error *err);
+hl_status hl_tape_jit(hl_tape *tape, hl_error *err);
 void hl_tape_jit_clear(hl_tape *tape);          /* back to the interpreter */
 int hl_tape_jit_active(const hl_tape *tape);    /* 1 if eval_d runs machine code */
 int hl_tape_jit_available(void);                /* 1 if built with libgccjit */
@@ -242,8 +241,8 @@ typedef enum hl_newton_status {
 
 typedef struct hl_newton hl_newton;
 
-int hl_newton_new(hl_newton **out, hl_tape *start, hl_tape *F, hl_tape *FJ, int max_iter,
-                  hl_error *err);
+hl_status hl_newton_new(hl_newton **out, hl_tape *start, hl_tape *F, hl_tape *FJ, int max_iter,
+                        hl_error *err);
 
 /* Decide convergence on Z(x, U) instead of U (Z: nx + m inputs, any number
  * of outputs, borrowed): done when Z moves by at most 4 eps max(1, |Z|), or
@@ -272,7 +271,7 @@ hl_newton_status hl_newton_solve(double *U, int *iters, double *last, const doub
  * on one degree of freedom, 350 ms for gauss3 on two), for 20-60 ns a
  * solve: it pays for runs of a few million steps.  HL_EUNSUP without libgccjit or for m > 16 (the interpreter
  * goes on). */
-int hl_newton_jit(hl_newton *nw, hl_error *err);
+hl_status hl_newton_jit(hl_newton *nw, hl_error *err);
 void hl_newton_jit_clear(hl_newton *nw);
 int hl_newton_jit_active(const hl_newton *nw);
 

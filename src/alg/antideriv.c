@@ -173,8 +173,8 @@ static void poly_integral(hl_alg *r, const fmpz_mpoly_t p, const trig *t, hl_alg
     flint_free(exp);
 }
 
-int hl_alg_antiderivative(hl_alg *r, int *found, const hl_alg *f, int x, hl_alg_ctx *ctx,
-                          hl_error *err)
+hl_status hl_alg_antiderivative(hl_alg *r, int *found, const hl_alg *f, int x, hl_alg_ctx *ctx,
+                                hl_error *err)
 {
     *found = 0;
     if (x < 0 || x >= ctx->nbase)

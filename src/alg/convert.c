@@ -144,7 +144,7 @@ static int convert_node(void *arg, const hl_expr *e)
     return status;
 }
 
-int hl_alg_from_expr(hl_alg *r, const hl_expr *e, hl_alg_ctx *ctx, hl_error *err)
+hl_status hl_alg_from_expr(hl_alg *r, const hl_expr *e, hl_alg_ctx *ctx, hl_error *err)
 {
     convert_walk w = {{hl_xcalloc(64, sizeof(memo_entry)), 64, 0}, ctx, err};
     int status = hl_expr_postorder(&e, 1, convert_node, &w);

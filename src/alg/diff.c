@@ -153,7 +153,7 @@ static void poly_deriv(fmpz_mpoly_t P, const fmpz_mpoly_t p, int nf, const int *
     fmpz_mpoly_clear(t, ctx->mctx);
 }
 
-int hl_alg_diff(hl_alg *r, const hl_alg *a, int var, hl_alg_ctx *ctx, hl_error *err)
+hl_status hl_alg_diff(hl_alg *r, const hl_alg *a, int var, hl_alg_ctx *ctx, hl_error *err)
 {
     const fmpz_mpoly_ctx_struct *mc = ctx->mctx;
     if (var < 0 || var >= ctx->nbase)

@@ -32,7 +32,7 @@ static int atom_value(hl_alg *r, alg_atom_kind kind, long q, const hl_alg *arg,
     return status;
 }
 
-int hl_alg_pi(hl_alg *r, hl_alg_ctx *ctx, hl_error *err)
+hl_status hl_alg_pi(hl_alg *r, hl_alg_ctx *ctx, hl_error *err)
 {
     return atom_value(r, ATOM_PI, 0, NULL, ctx, err);
 }
@@ -177,7 +177,8 @@ static int alg_root(hl_alg *r, const hl_alg *a, long q, hl_alg_ctx *ctx, hl_erro
     return status;
 }
 
-int hl_alg_pow_fmpq(hl_alg *r, const hl_alg *a, const fmpq_t e, hl_alg_ctx *ctx, hl_error *err)
+hl_status hl_alg_pow_fmpq(hl_alg *r, const hl_alg *a, const fmpq_t e, hl_alg_ctx *ctx,
+                          hl_error *err)
 {
     const fmpz *p = fmpq_numref(e), *q = fmpq_denref(e);
     if (!fmpz_fits_si(p) || labs(fmpz_get_si(p)) > MAX_POW_EXP || !fmpz_fits_si(q)
@@ -425,7 +426,7 @@ static int outside_unit(const hl_alg *a, const hl_alg_ctx *ctx)
     return out;
 }
 
-int hl_alg_apply(hl_alg *r, hl_fun f, const hl_alg *a, hl_alg_ctx *ctx, hl_error *err)
+hl_status hl_alg_apply(hl_alg *r, hl_fun f, const hl_alg *a, hl_alg_ctx *ctx, hl_error *err)
 {
     hl_alg s, c;
     int status;
@@ -538,8 +539,8 @@ static int alg_atan2(hl_alg *r, const hl_alg *y, const hl_alg *x, hl_alg_ctx *ct
     return status;
 }
 
-int hl_alg_apply2(hl_alg *r, hl_fun f, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx,
-                  hl_error *err)
+hl_status hl_alg_apply2(hl_alg *r, hl_fun f, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx,
+                        hl_error *err)
 {
     if (f != HL_ATAN2)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "'%s' takes one argument",
@@ -547,7 +548,7 @@ int hl_alg_apply2(hl_alg *r, hl_fun f, const hl_alg *a, const hl_alg *b, hl_alg_
     return alg_atan2(r, a, b, ctx, err);
 }
 
-int hl_alg_pow(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx, hl_error *err)
+hl_status hl_alg_pow(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx, hl_error *err)
 {
     fmpq_t e;
     fmpq_init(e);

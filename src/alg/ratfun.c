@@ -412,7 +412,7 @@ static void inv(hl_alg *r, const hl_alg *a, hl_alg_ctx *ctx)
     hl_alg_clear(&t, ctx);
 }
 
-int hl_alg_div(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx, hl_error *err)
+hl_status hl_alg_div(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_alg_ctx *ctx, hl_error *err)
 {
     if (fmpz_mpoly_is_zero(b->num, ctx->mctx))
         return hl_error_set(err, HL_EDOM, NULL, -1, 0, "division by zero");
@@ -449,7 +449,7 @@ int alg_check_pow_size(const hl_alg *a, unsigned long n, const hl_alg_ctx *ctx, 
                         total, ALG_POW_MAX_BITS);
 }
 
-int hl_alg_pow_si(hl_alg *r, const hl_alg *a, long e, hl_alg_ctx *ctx, hl_error *err)
+hl_status hl_alg_pow_si(hl_alg *r, const hl_alg *a, long e, hl_alg_ctx *ctx, hl_error *err)
 {
     const fmpz_mpoly_ctx_struct *mc = ctx->mctx;
     if (e == 0) {

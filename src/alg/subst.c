@@ -231,15 +231,15 @@ static int subst_rec(hl_alg *r, const hl_alg *a, subst_state *st, hl_alg_ctx *ct
     return status;
 }
 
-int hl_alg_subst(hl_alg *r, const hl_alg *a, int n, const int *vars, const hl_alg *vals,
-                 hl_alg_ctx *ctx, hl_error *err)
+hl_status hl_alg_subst(hl_alg *r, const hl_alg *a, int n, const int *vars, const hl_alg *vals,
+                       hl_alg_ctx *ctx, hl_error *err)
 {
     long reached;
     return hl_alg_subst_bounded(r, &reached, a, n, vars, vals, 0, ctx, err);
 }
 
-int hl_alg_subst_bounded(hl_alg *r, long *reached, const hl_alg *a, int n, const int *vars,
-                         const hl_alg *vals, long max_terms, hl_alg_ctx *ctx, hl_error *err)
+hl_status hl_alg_subst_bounded(hl_alg *r, long *reached, const hl_alg *a, int n, const int *vars,
+                               const hl_alg *vals, long max_terms, hl_alg_ctx *ctx, hl_error *err)
 {
     *reached = 0;
     int nv = alg_nvars(ctx);

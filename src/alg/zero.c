@@ -142,8 +142,8 @@ static void state_clear(eval_state *st)
     free(st->known);
 }
 
-int hl_alg_eval_arb(arb_t r, const hl_alg *a, arb_srcptr vals, slong prec, hl_alg_ctx *ctx,
-                    hl_error *err)
+hl_status hl_alg_eval_arb(arb_t r, const hl_alg *a, arb_srcptr vals, slong prec, hl_alg_ctx *ctx,
+                          hl_error *err)
 {
     eval_state st;
     state_init(&st, vals, prec, ctx);
@@ -291,7 +291,7 @@ static int poly_in(const hl_alg *a, int var, const hl_alg_ctx *ctx)
     return 1;
 }
 
-int hl_alg_coeff(hl_alg *r, const hl_alg *a, int var, long k, hl_alg_ctx *ctx, hl_error *err)
+hl_status hl_alg_coeff(hl_alg *r, const hl_alg *a, int var, long k, hl_alg_ctx *ctx, hl_error *err)
 {
     if (!poly_in(a, var, ctx))
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "not a polynomial in '%s'",

@@ -37,7 +37,7 @@ static int diff_cond(int *ok, const hl_alg *x, int vx, const hl_alg *y, int vy, 
     return st;
 }
 
-int hl_errfield_is_hamiltonian(int *yes, const hl_alg *v, hl_system *sys, hl_error *err)
+hl_status hl_errfield_is_hamiltonian(int *yes, const hl_alg *v, hl_system *sys, hl_error *err)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     int N = hl_system_ndof(sys), st = HL_OK, ok = 1;
@@ -209,7 +209,7 @@ static int parallel(int *par, hl_alg *lambda, const hl_alg *v, const hl_alg *f, 
     return HL_OK;
 }
 
-int hl_errfield_classify(hl_errfield *F, const hl_alg *v, hl_system *sys, hl_error *err)
+hl_status hl_errfield_classify(hl_errfield *F, const hl_alg *v, hl_system *sys, hl_error *err)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     int N = hl_system_ndof(sys), m = 2 * N, st, zero = 1;

@@ -115,7 +115,7 @@ static int stages_within(const hl_expr **val_of, const hl_scheme *s, hl_alg_ctx 
     return st;
 }
 
-int hl_errors_scheme_map(hl_alg *images, const hl_scheme *s, hl_error *err)
+hl_status hl_errors_scheme_map(hl_alg *images, const hl_scheme *s, hl_error *err)
 {
     if (!s->all_explicit || s->nint > 0)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
@@ -161,14 +161,14 @@ int hl_errors_scheme_map(hl_alg *images, const hl_scheme *s, hl_error *err)
     return st;
 }
 
-int hl_errors_K_closed(hl_alg *K, const hl_alg *images, hl_system *sys, hl_error *err)
+hl_status hl_errors_K_closed(hl_alg *K, const hl_alg *images, hl_system *sys, hl_error *err)
 {
     long reached;
     return hl_errors_K_closed_bounded(K, &reached, images, 0, sys, err);
 }
 
-int hl_errors_K_closed_bounded(hl_alg *K, long *reached, const hl_alg *images, long max_terms,
-                               hl_system *sys, hl_error *err)
+hl_status hl_errors_K_closed_bounded(hl_alg *K, long *reached, const hl_alg *images, long max_terms,
+                                     hl_system *sys, hl_error *err)
 {
     *reached = 0;
     long most = 0;
@@ -200,7 +200,7 @@ int hl_errors_K_closed_bounded(hl_alg *K, long *reached, const hl_alg *images, l
     return st;
 }
 
-void hl_errors_correct_series(hl_series *out, const hl_series *psi, const hl_errors *e, int m,
+void hl_errors_correct_series(hl_series *out, const hl_series *psi, const hl_vfields *e, int m,
                               hl_system *sys)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
@@ -214,7 +214,7 @@ void hl_errors_correct_series(hl_series *out, const hl_series *psi, const hl_err
         for (int k = 2; k <= m && k < out[i].n; k++) {
             fmpq_one(f);
             fmpz_fac_ui(fmpq_denref(f), (ulong)k);
-            hl_alg_scalar_mul_fmpq(&d, &hl_errors_field(e, k)[i], f, ctx);
+            hl_alg_scalar_mul_fmpq(&d, &hl_vfields_v(e, k)[i], f, ctx);
             hl_alg_sub(&out[i].c[k], &out[i].c[k], &d, ctx);
         }
     }
@@ -222,7 +222,7 @@ void hl_errors_correct_series(hl_series *out, const hl_series *psi, const hl_err
     fmpq_clear(f);
 }
 
-void hl_errors_correct_map(hl_alg *images, const hl_errors *e, int m, hl_system *sys)
+void hl_errors_correct_map(hl_alg *images, const hl_vfields *e, int m, hl_system *sys)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     int M = 2 * e->N;
@@ -239,7 +239,7 @@ void hl_errors_correct_map(hl_alg *images, const hl_errors *e, int m, hl_system 
         fmpz_fac_ui(fmpq_denref(f), (ulong)k);
         hl_alg_scalar_mul_fmpq(&Dk, &Dk, f, ctx);
         for (int i = 0; i < M; i++) {
-            hl_alg_mul(&d, &Dk, &hl_errors_field(e, k)[i], ctx);
+            hl_alg_mul(&d, &Dk, &hl_vfields_v(e, k)[i], ctx);
             hl_alg_sub(&images[i], &images[i], &d, ctx);
         }
     }

@@ -51,8 +51,8 @@ static int lie_vec(hl_series *lie, hl_system *sys, int n, hl_error *err)
 
 /* v_k from K alone (see analysis.h): the partial map psi~ is rebuilt for each
  * k from the Lie series and the v_j (j < k) found so far by this route. */
-static int errors_from_K(hl_errors *e, const hl_series *psi, const hl_series *lie,
-                         hl_system *sys, hl_error *err)
+static int errors_from_K(hl_vfields *e, const hl_series *psi, const hl_series *lie, hl_system *sys,
+                         hl_error *err)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     int N = e->N, m = 2 * N, n = e->n, st = HL_OK;
@@ -101,7 +101,7 @@ static int errors_from_K(hl_errors *e, const hl_series *psi, const hl_series *li
     return st;
 }
 
-static int compute(hl_errors *e, const hl_series *psi, hl_system *sys, int n, int cross,
+static int compute(hl_vfields *e, const hl_series *psi, hl_system *sys, int n, int cross,
                    long budget, hl_error *err)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
@@ -165,25 +165,25 @@ static int compute(hl_errors *e, const hl_series *psi, hl_system *sys, int n, in
     return st;
 }
 
-int hl_errors_compute(hl_errors *e, const hl_series *psi, hl_system *sys, int n,
-                      hl_error *err)
+hl_status hl_vfields_compute(hl_vfields *e, const hl_series *psi, hl_system *sys, int n,
+                             hl_error *err)
 {
     return compute(e, psi, sys, n, 1, 0, err);
 }
 
-int hl_errors_compute_bounded(hl_errors *e, const hl_series *psi, hl_system *sys, int n,
-                              long max_terms, hl_error *err)
+hl_status hl_vfields_compute_bounded(hl_vfields *e, const hl_series *psi, hl_system *sys, int n,
+                                     long max_terms, hl_error *err)
 {
     return compute(e, psi, sys, n, 1, max_terms, err);
 }
 
-int hl_errors_compute_direct(hl_errors *e, const hl_series *psi, hl_system *sys, int n,
-                             hl_error *err)
+hl_status hl_vfields_compute_direct(hl_vfields *e, const hl_series *psi, hl_system *sys, int n,
+                                    hl_error *err)
 {
     return compute(e, psi, sys, n, 0, 0, err);
 }
 
-void hl_errors_clear(hl_errors *e, hl_system *sys)
+void hl_vfields_clear(hl_vfields *e, hl_system *sys)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     hl_alg_vec_free(e->v, (e->n + 1) * 2 * e->N, ctx);

@@ -202,8 +202,8 @@ static int keep_checked(hl_alg *phi, int *count, const hl_alg *v, int nv, hl_alg
     return st;
 }
 
-int hl_field_poly_invariants(hl_alg **out, int *count, int *applicable, const hl_alg *v,
-                             int degree, hl_system *sys, hl_error *err)
+hl_status hl_field_poly_invariants(hl_alg **out, int *count, int *applicable, const hl_alg *v,
+                                   int degree, hl_system *sys, hl_error *err)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     int nv = 2 * hl_system_ndof(sys), st = HL_OK;
@@ -274,8 +274,8 @@ static int rational_roots(fmpq **roots, const fmpq_mat_t A)
     return n;
 }
 
-int hl_field_darboux_invariants(hl_alg **out, int *count, int *applicable, const hl_alg *v,
-                                int degree, hl_system *sys, hl_error *err)
+hl_status hl_field_darboux_invariants(hl_alg **out, int *count, int *applicable, const hl_alg *v,
+                                      int degree, hl_system *sys, hl_error *err)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     int nv = 2 * hl_system_ndof(sys), st = HL_OK;

@@ -72,7 +72,7 @@ static int exp_coeff(hl_alg *out, const hl_alg *F, int m, int J, int vD, hl_alg_
     return st;
 }
 
-int hl_modified_field(hl_alg *mf, const hl_series *psi, hl_system *sys, int n, hl_error *err)
+hl_status hl_modified_field(hl_alg *mf, const hl_series *psi, hl_system *sys, int n, hl_error *err)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     int m = 2 * hl_system_ndof(sys), vD = hl_system_var_D(sys), st = HL_OK;

@@ -895,7 +895,7 @@ static void hull_thresholds(hl_numerr *r)
     find_leading(r);
 }
 
-int hl_numerr_compute(hl_numerr *r, const hl_scheme *s, const double *z, int n, hl_error *err)
+hl_status hl_numerr_compute(hl_numerr *r, const hl_scheme *s, const double *z, int n, hl_error *err)
 {
     int st = numerr_start(r, s->sys, n, err);
     if (st != HL_OK)
@@ -933,8 +933,8 @@ done:
     return st;
 }
 
-int hl_numerr_from_series(hl_numerr *r, hl_system *sys, const double *z, const double *psi,
-                          int n, hl_error *err)
+hl_status hl_numerr_from_series(hl_numerr *r, hl_system *sys, const double *z, const double *psi,
+                                int n, hl_error *err)
 {
     int st = numerr_start(r, sys, n, err);
     if (st != HL_OK)

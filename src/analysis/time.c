@@ -36,8 +36,8 @@ static void exp_tau(hl_series *E, const hl_series *lie, const hl_series *tau, in
     hl_series_clear(&t, ctx);
 }
 
-int hl_errors_time_series(hl_series *tau, int *ok, int *fail_k, const hl_series *psi,
-                          hl_system *sys, int n, hl_error *err)
+hl_status hl_errors_time_series(hl_series *tau, int *ok, int *fail_k, const hl_series *psi,
+                                hl_system *sys, int n, hl_error *err)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     int N = hl_system_ndof(sys), m = 2 * N, st = HL_OK;
@@ -108,8 +108,8 @@ int hl_errors_time_series(hl_series *tau, int *ok, int *fail_k, const hl_series 
     return st;
 }
 
-int hl_errors_time_closed(hl_alg *tau, hl_alg *r, int *ok, hl_alg *D2, int *have_D2,
-                          const hl_alg *images, hl_system *sys, hl_error *err)
+hl_status hl_errors_time_closed(hl_alg *tau, hl_alg *r, int *ok, hl_alg *D2, int *have_D2,
+                                const hl_alg *images, hl_system *sys, hl_error *err)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     int st = HL_OK, q = hl_system_var_q(sys, 0), p = hl_system_var_p(sys, 0),
@@ -226,8 +226,8 @@ static int linear_series(hl_series *M, const hl_series *psi, hl_system *sys, int
     return ok;
 }
 
-int hl_errors_time_closed_series(hl_alg *tau, hl_alg *r, int *ok, hl_alg *D2,
-                                 const hl_series *psi, hl_system *sys, int n, hl_error *err)
+hl_status hl_errors_time_closed_series(hl_alg *tau, hl_alg *r, int *ok, hl_alg *D2,
+                                       const hl_series *psi, hl_system *sys, int n, hl_error *err)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     int st = HL_OK, vD = hl_system_var_D(sys);

@@ -140,7 +140,7 @@ typedef struct result {
     int N, m, n;
     const char **names;  /* phase variable names, 2N */
     hl_series *psi;      /* expansion to O(D^(n+1)) */
-    hl_errors e;
+    hl_vfields e;
     hl_errfield F;
     int have_F;
     int closed;          /* explicit: map and K in closed form */
@@ -153,7 +153,7 @@ typedef struct result {
     int correct;
     hl_series *cpsi;     /* corrected series */
     hl_alg *cmap;        /* corrected map (closed) */
-    hl_errors ce;
+    hl_vfields ce;
     hl_errfield cF;
     int have_cF, have_ce;
     int tried_tau, tau_ok, tau_fail; /* part 4: psi = exp(tau(D) g)? */
@@ -184,16 +184,16 @@ static void series_vec_free(hl_series *s, int m, hl_alg_ctx *ctx)
     free(s);
 }
 
-static int analyse(hl_errors *e, hl_errfield *F, int *have_F, const hl_series *psi,
-                   result *R, hl_error *err)
+static int analyse(hl_vfields *e, hl_errfield *F, int *have_F, const hl_series *psi, result *R,
+                   hl_error *err)
 {
-    int st = hl_errors_compute_bounded(e, psi, R->sys, R->n, K_ROUTE_BUDGET, err);
+    int st = hl_vfields_compute_bounded(e, psi, R->sys, R->n, K_ROUTE_BUDGET, err);
     if (st == HL_OK && e->checked && !e->agree)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
                             "internal error: v_%d computed two ways (expansion, K(D)) disagree",
                             e->disagree_k);
     if (st == HL_OK && e->leading) {
-        st = hl_errfield_classify(F, hl_errors_field(e, e->leading), R->sys, err);
+        st = hl_errfield_classify(F, hl_vfields_v(e, e->leading), R->sys, err);
         *have_F = st == HL_OK;
     }
     return st;
@@ -277,7 +277,7 @@ static int compute(result *R, const err_opts *r, const cli_opts *o, hl_error *er
     if (R->s->all_explicit && R->s->nint == 0 && (st = closed_forms(R, err)) != HL_OK)
         return st;
     if (R->have_F && R->invdeg > 0) {
-        const hl_alg *v = hl_errors_field(&R->e, R->e.leading);
+        const hl_alg *v = hl_vfields_v(&R->e, R->e.leading);
         if ((st = hl_field_poly_invariants(&R->inv_poly, &R->ninv_poly, &R->inv_poly_app, v,
                                            R->invdeg, sys, err)) != HL_OK ||
             (st = hl_field_darboux_invariants(&R->inv_dar, &R->ninv_dar, &R->inv_dar_app, v,
@@ -344,9 +344,9 @@ static void result_free(result *R)
     series_vec_free(R->Ks, R->m, ctx);
     series_vec_free(R->cpsi, R->m, ctx);
     if (R->e.v != NULL || R->e.vK != NULL)
-        hl_errors_clear(&R->e, R->sys);
+        hl_vfields_clear(&R->e, R->sys);
     if (R->have_ce)
-        hl_errors_clear(&R->ce, R->sys);
+        hl_vfields_clear(&R->ce, R->sys);
     if (R->have_F)
         hl_errfield_clear(&R->F, R->sys);
     if (R->have_cF)
@@ -416,7 +416,7 @@ static const char *shift_direction(const hl_alg *c, result *R)
     return dir;
 }
 
-static void put_classification(hl_buf *out, const hl_errors *e, const hl_errfield *F, result *R,
+static void put_classification(hl_buf *out, const hl_vfields *e, const hl_errfield *F, result *R,
                                hl_style st)
 {
     int k = e->leading;
@@ -458,7 +458,7 @@ static void put_classification(hl_buf *out, const hl_errors *e, const hl_errfiel
         hl_buf_puts(out, "  Hamiltonian: no\n");
 }
 
-static void put_order(hl_buf *out, const hl_errors *e)
+static void put_order(hl_buf *out, const hl_vfields *e)
 {
     if (e->leading)
         hl_buf_printf(out, "order: %d (leading error v_%d)\n", e->order, e->leading);
@@ -576,7 +576,7 @@ static void write_text(hl_buf *out, result *R, const err_opts *r, const cli_opts
         hl_buf_printf(out, "%smap: closed form omitted: %s\n", pre, R->map_omitted);
     for (int k = 2; k <= R->n; k++) {
         hl_buf_printf(out, latex ? "v_{%d} = " : "v_%d = ", k);
-        put_field(out, hl_errors_field(&R->e, k), R, st);
+        put_field(out, hl_vfields_v(&R->e, k), R, st);
         hl_buf_puts(out, "\n");
     }
     if (R->e.checked)
@@ -670,7 +670,7 @@ static void json_K_coefficients(hl_json *j, result *R)
     hl_json_array_end(j);
 }
 
-static void json_analysis(hl_json *j, const hl_errors *e, const hl_errfield *F, int have_F,
+static void json_analysis(hl_json *j, const hl_vfields *e, const hl_errfield *F, int have_F,
                           result *R)
 {
     hl_json_key(j, "fields");
@@ -678,7 +678,7 @@ static void json_analysis(hl_json *j, const hl_errors *e, const hl_errfield *F, 
     for (int k = 2; k <= e->n; k++) {
         hl_json_object_begin(j);
         hl_json_kv_int(j, "k", k);
-        json_field(j, "v", hl_errors_field(e, k), R);
+        json_field(j, "v", hl_vfields_v(e, k), R);
         hl_json_object_end(j);
     }
     hl_json_array_end(j);

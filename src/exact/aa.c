@@ -23,7 +23,7 @@ static int alg_of(hl_alg *r, const hl_expr *e, hl_system *sys, hl_error *err)
     return hl_alg_from_expr(r, e, hl_system_ctx(sys), err);
 }
 
-int hl_exact_aa_read(hl_exact_aa *aa, hl_system *sys, const char *spec, hl_error *err)
+hl_status hl_exact_aa_read(hl_exact_aa *aa, hl_system *sys, const char *spec, hl_error *err)
 {
     memset(aa, 0, sizeof *aa);
     if (hl_system_ndof(sys) != 1)
@@ -86,8 +86,8 @@ static const hl_expr *in_qp(hl_pool *pool, const hl_expr *e, const hl_expr *th,
     return hl_expr_subst(pool, e, 2, names, vals);
 }
 
-int hl_exact_aa_verify(int *ok, char *why, size_t whylen, const hl_exact_aa *aa,
-                       hl_system *sys, hl_error *err)
+hl_status hl_exact_aa_verify(int *ok, char *why, size_t whylen, const hl_exact_aa *aa,
+                             hl_system *sys, hl_error *err)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     hl_pool *pool = hl_system_pool(sys);
@@ -172,7 +172,7 @@ int hl_exact_aa_verify(int *ok, char *why, size_t whylen, const hl_exact_aa *aa,
     return st;
 }
 
-int hl_exact_aa_scheme(hl_alg *images, const hl_exact_aa *aa, hl_system *sys, hl_error *err)
+hl_status hl_exact_aa_scheme(hl_alg *images, const hl_exact_aa *aa, hl_system *sys, hl_error *err)
 {
     hl_pool *pool = hl_system_pool(sys);
     /* theta -> theta(q,p) + nu(I(q,p)) D, I -> I(q,p) */

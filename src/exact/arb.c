@@ -34,7 +34,7 @@ struct hl_exact_arb {
     int have_T, kind;
 };
 
-int hl_exact_arb_new(hl_exact_arb **out, hl_system *sys, double digits, hl_error *err)
+hl_status hl_exact_arb_new(hl_exact_arb **out, hl_system *sys, double digits, hl_error *err)
 {
     *out = NULL;
     if (!(digits >= 16 && digits <= 1000))
@@ -230,7 +230,7 @@ static int orbit_period(arb_srcptr z, const arb_t E, const hl_exact_orbit *o, hl
     return st;
 }
 
-int hl_exact_arb_period(arb_t T, arb_srcptr z, hl_exact_arb *f, hl_error *err)
+hl_status hl_exact_arb_period(arb_t T, arb_srcptr z, hl_exact_arb *f, hl_error *err)
 {
     double zd[2] = {mid_d(z), mid_d(z + 1)};
     hl_exact_orbit o;
@@ -266,7 +266,7 @@ int hl_exact_arb_period(arb_t T, arb_srcptr z, hl_exact_arb *f, hl_error *err)
     return st;
 }
 
-int hl_exact_arb_step(arb_ptr z, const arb_t dt, hl_exact_arb *f, hl_error *err)
+hl_status hl_exact_arb_step(arb_ptr z, const arb_t dt, hl_exact_arb *f, hl_error *err)
 {
     arb_t T, r, k, t;
     arb_init(T);

@@ -935,7 +935,7 @@ static int periodic_in_q(hl_exact_flow *f)
 
 /* ---- public -------------------------------------------------------------- */
 
-int hl_exact_flow_new(hl_exact_flow **out, hl_system *sys, hl_error *err)
+hl_status hl_exact_flow_new(hl_exact_flow **out, hl_system *sys, hl_error *err)
 {
     *out = NULL;
     if (!hl_system_has_H(sys))
@@ -1001,7 +1001,7 @@ int hl_exact_flow_is_linear(const hl_exact_flow *f)
     return f->linear;
 }
 
-int hl_exact_flow_step(double *z, double dt, void *flow, hl_error *err)
+hl_status hl_exact_flow_step(double *z, double dt, void *flow, hl_error *err)
 {
     hl_exact_flow *f = flow;
     if (!isfinite(dt))
@@ -1017,7 +1017,8 @@ int hl_exact_flow_step(double *z, double dt, void *flow, hl_error *err)
     return st;
 }
 
-int hl_exact_flow_series(double *coef, const double *z, int n, hl_exact_flow *f, hl_error *err)
+hl_status hl_exact_flow_series(double *coef, const double *z, int n, hl_exact_flow *f,
+                               hl_error *err)
 {
     if (n < 0)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "negative order %d", n);
@@ -1028,7 +1029,7 @@ int hl_exact_flow_series(double *coef, const double *z, int n, hl_exact_flow *f,
     return orbit_series(coef, z, n, f, err);
 }
 
-int hl_exact_flow_period(double *T, const double *z, hl_exact_flow *f, hl_error *err)
+hl_status hl_exact_flow_period(double *T, const double *z, hl_exact_flow *f, hl_error *err)
 {
     if (f->linear)
         return hl_error_set(err, HL_EUNSUP, NULL, -1, 0,

@@ -337,7 +337,7 @@ static int parser_init(parser *p, hl_pool *pool, const char *src, hl_error *err)
     return hl_lex_next(&p->lx, err);
 }
 
-int hl_parse(const hl_expr **out, hl_pool *pool, const char *src, hl_error *err)
+hl_status hl_parse(const hl_expr **out, hl_pool *pool, const char *src, hl_error *err)
 {
     parser p;
     value v;
@@ -390,8 +390,7 @@ static int parse_items(parser *p, hl_eqn *out, int max, int *n)
     return HL_OK;
 }
 
-int hl_parse_list(hl_eqn *out, int max, int *n, hl_pool *pool, const char *src,
-                  hl_error *err)
+hl_status hl_parse_list(hl_eqn *out, int max, int *n, hl_pool *pool, const char *src, hl_error *err)
 {
     parser p;
     int st, count = 0;

@@ -298,8 +298,8 @@ static int eval_node(void *arg, const hl_expr *e)
     return HL_OK;
 }
 
-int hl_expr_eval_d(double *out, const hl_expr *e, int n, const char *const *names,
-                   const double *vals, hl_error *err)
+hl_status hl_expr_eval_d(double *out, const hl_expr *e, int n, const char *const *names,
+                         const double *vals, hl_error *err)
 {
     eval_walk w = {.n = n, .names = names, .vals = vals, .err = err};
     hl_error_clear(err);

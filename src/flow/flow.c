@@ -26,7 +26,7 @@ struct hl_flow {
     hl_flow_pace pace; /* to stop where the steps shrink forever */
 };
 
-int hl_flow_new(hl_flow **out, hl_tape *f, double atol, double rtol, hl_error *err)
+hl_status hl_flow_new(hl_flow **out, hl_tape *f, double atol, double rtol, hl_error *err)
 {
     *out = NULL;
     int n = hl_tape_ninputs(f);
@@ -277,7 +277,7 @@ static int drive(hl_flow *fl, double *thi, double *tlo, double *z, double tend, 
     }
 }
 
-int hl_flow_evolve(hl_flow *fl, double *t, double t1, double *z, hl_error *err)
+hl_status hl_flow_evolve(hl_flow *fl, double *t, double t1, double *z, hl_error *err)
 {
     if (!isfinite(*t) || !isfinite(t1))
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "times must be finite");
@@ -287,8 +287,8 @@ int hl_flow_evolve(hl_flow *fl, double *t, double t1, double *z, hl_error *err)
     return st;
 }
 
-int hl_flow_run(hl_flow *fl, double t0, const double *z0, const double *ts, int n,
-                hl_flow_fn fn, void *arg, hl_error *err)
+hl_status hl_flow_run(hl_flow *fl, double t0, const double *z0, const double *ts, int n,
+                      hl_flow_fn fn, void *arg, hl_error *err)
 {
     if (n <= 0)
         return HL_OK;
@@ -320,8 +320,8 @@ static int store_fn(double t, const double *z, void *arg)
     return 0;
 }
 
-int hl_flow_eval_at(hl_flow *fl, double t0, const double *z0, const double *ts, int n,
-                    double *out, hl_error *err)
+hl_status hl_flow_eval_at(hl_flow *fl, double t0, const double *z0, const double *ts, int n,
+                          double *out, hl_error *err)
 {
     store s = {out, fl->n, 0};
     return hl_flow_run(fl, t0, z0, ts, n, store_fn, &s, err);

@@ -24,7 +24,7 @@ struct hl_flow_arb {
     hl_flow_pace pace; /* to stop where the steps shrink forever */
 };
 
-int hl_flow_arb_new(hl_flow_arb **out, hl_tape *f, double digits, hl_error *err)
+hl_status hl_flow_arb_new(hl_flow_arb **out, hl_tape *f, double digits, hl_error *err)
 {
     *out = NULL;
     int n = hl_tape_ninputs(f);
@@ -237,15 +237,15 @@ static int drive(hl_flow_arb *fl, arb_t t, arb_ptr z, const arb_t tend, arb_srcp
     }
 }
 
-int hl_flow_arb_evolve(hl_flow_arb *fl, arb_t t, const arb_t t1, arb_ptr z, hl_error *err)
+hl_status hl_flow_arb_evolve(hl_flow_arb *fl, arb_t t, const arb_t t1, arb_ptr z, hl_error *err)
 {
     if (!arb_is_finite(t) || !arb_is_finite(t1))
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "times must be finite");
     return drive(fl, t, z, t1, NULL, 0, NULL, NULL, err);
 }
 
-int hl_flow_arb_run(hl_flow_arb *fl, const arb_t t0, arb_srcptr z0, arb_srcptr ts, int n,
-                    hl_flow_arb_fn fn, void *arg, hl_error *err)
+hl_status hl_flow_arb_run(hl_flow_arb *fl, const arb_t t0, arb_srcptr z0, arb_srcptr ts, int n,
+                          hl_flow_arb_fn fn, void *arg, hl_error *err)
 {
     if (n <= 0)
         return HL_OK;

@@ -11,7 +11,7 @@ static int need_H(const hl_system *sys, hl_error *err)
 }
 
 /* {a,b} = sum_j da/dq_j db/dp_j - db/dq_j da/dp_j */
-int hl_bracket(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_system *sys, hl_error *err)
+hl_status hl_bracket(hl_alg *r, const hl_alg *a, const hl_alg *b, hl_system *sys, hl_error *err)
 {
     hl_alg_ctx *ctx = sys->ctx;
     hl_alg s, da, db, t;
@@ -69,7 +69,7 @@ int ham_field(hl_system *sys, hl_error *err)
     return HL_OK;
 }
 
-int hl_generator(hl_alg *xi, hl_alg *eta, hl_system *sys, hl_error *err)
+hl_status hl_generator(hl_alg *xi, hl_alg *eta, hl_system *sys, hl_error *err)
 {
     int st = ham_field(sys, err);
     if (st != HL_OK)
@@ -83,7 +83,7 @@ int hl_generator(hl_alg *xi, hl_alg *eta, hl_system *sys, hl_error *err)
 
 /* g o phi = sum_j xi_j dphi/dq_j + eta_j dphi/dp_j, the same as {phi, H}
  * but with the derivatives of H taken once per system. */
-int hl_generator_apply(hl_alg *r, const hl_alg *phi, hl_system *sys, hl_error *err)
+hl_status hl_generator_apply(hl_alg *r, const hl_alg *phi, hl_system *sys, hl_error *err)
 {
     int st = ham_field(sys, err);
     if (st != HL_OK)

@@ -3,7 +3,7 @@
  * {Q_i,Q_j} = {P_i,P_j} = 0). */
 #include "ham/ham_impl.h"
 
-int hl_check_integral(int *yes, hl_alg *br, const hl_alg *I, hl_system *sys, hl_error *err)
+hl_status hl_check_integral(int *yes, hl_alg *br, const hl_alg *I, hl_system *sys, hl_error *err)
 {
     hl_alg b;
     hl_alg_init(&b, sys->ctx);
@@ -17,8 +17,8 @@ int hl_check_integral(int *yes, hl_alg *br, const hl_alg *I, hl_system *sys, hl_
     return st;
 }
 
-int hl_check_involution(int *all_zero, hl_alg *br, const hl_alg *f, int n, hl_system *sys,
-                        hl_error *err)
+hl_status hl_check_involution(int *all_zero, hl_alg *br, const hl_alg *f, int n, hl_system *sys,
+                              hl_error *err)
 {
     int st = HL_OK;
     *all_zero = 1;
@@ -78,7 +78,7 @@ static int rank_bareiss(int *rank, hl_alg *m, int rows, int cols, hl_alg_ctx *ct
     return st;
 }
 
-int hl_jacobian_rank(int *rank, const hl_alg *f, int n, hl_system *sys, hl_error *err)
+hl_status hl_jacobian_rank(int *rank, const hl_alg *f, int n, hl_system *sys, hl_error *err)
 {
     int cols = 2 * sys->n, st = HL_OK;
     *rank = 0;
@@ -104,8 +104,8 @@ static long J_entry(int a, int b, int N)
     return 0;
 }
 
-int hl_check_canonical(int *canonical, hl_alg *br, const hl_alg *images, hl_system *sys,
-                       hl_error *err)
+hl_status hl_check_canonical(int *canonical, hl_alg *br, const hl_alg *images, hl_system *sys,
+                             hl_error *err)
 {
     int N = sys->n, N2 = 2 * N, st = HL_OK;
     hl_alg d;

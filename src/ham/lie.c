@@ -52,13 +52,13 @@ static int refuse_growth(int order, int k, long total, long len_prev, long len_k
                         largest_order_that_fits(len_prev, len_k, k));
 }
 
-int hl_lie_terms(hl_alg *terms, const hl_alg *phi, int order, hl_system *sys, hl_error *err)
+hl_status hl_lie_terms(hl_alg *terms, const hl_alg *phi, int order, hl_system *sys, hl_error *err)
 {
     return hl_lie_terms_watched(terms, phi, order, sys, NULL, NULL, err);
 }
 
-int hl_lie_terms_watched(hl_alg *terms, const hl_alg *phi, int order, hl_system *sys,
-                         hl_progress_fn progress, void *arg, hl_error *err)
+hl_status hl_lie_terms_watched(hl_alg *terms, const hl_alg *phi, int order, hl_system *sys,
+                               hl_progress_fn progress, void *arg, hl_error *err)
 {
     int st = check_order(order, err);
     if (st != HL_OK)
@@ -81,7 +81,7 @@ int hl_lie_terms_watched(hl_alg *terms, const hl_alg *phi, int order, hl_system 
     return HL_OK;
 }
 
-int hl_lie_series(hl_alg *r, const hl_alg *phi, int order, hl_system *sys, hl_error *err)
+hl_status hl_lie_series(hl_alg *r, const hl_alg *phi, int order, hl_system *sys, hl_error *err)
 {
     int st = check_order(order, err);
     if (st != HL_OK)

@@ -92,7 +92,7 @@ int ham_read_expr(hl_alg *out, hl_system *sys, const hl_expr *e, const char *src
     return st;
 }
 
-int hl_system_read(hl_alg *out, hl_system *sys, const char *formula, hl_error *err)
+hl_status hl_system_read(hl_alg *out, hl_system *sys, const char *formula, hl_error *err)
 {
     const hl_expr *e;
     int st = hl_parse(&e, sys->pool, formula, err);
@@ -114,7 +114,7 @@ int ham_step_refused(const hl_system *sys, const char *src, int offset, const ch
                         sys->step, what, other);
 }
 
-int hl_system_read_phase(hl_alg *out, hl_system *sys, const char *formula, hl_error *err)
+hl_status hl_system_read_phase(hl_alg *out, hl_system *sys, const char *formula, hl_error *err)
 {
     const hl_expr *e;
     int st = hl_parse(&e, sys->pool, formula, err);
@@ -214,7 +214,7 @@ static int match_items(int *which, const hl_system *sys, const hl_eqn *items, in
     return HL_OK;
 }
 
-int hl_system_read_map(hl_alg *images, hl_system *sys, const char *map, hl_error *err)
+hl_status hl_system_read_map(hl_alg *images, hl_system *sys, const char *map, hl_error *err)
 {
     int N2 = 2 * sys->n, max = N2 + 2, n = 0;
     for (const char *c = map; *c; c++)

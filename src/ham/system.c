@@ -537,7 +537,7 @@ static int set_step(hl_system *sys, const char *name, hl_error *err)
     return HL_OK;
 }
 
-int hl_system_new(hl_system **out, const hl_system_spec *spec, hl_error *err)
+hl_status hl_system_new(hl_system **out, const hl_system_spec *spec, hl_error *err)
 {
     hl_system *sys = hl_xcalloc(1, sizeof *sys);
     namelist syms = {0, 0, NULL};

@@ -7,7 +7,7 @@
  * Everything the rows need is computed once (struct hl_paper_work): the
  * oscillator H = (p^2+x^2)/2, the paper's three schemes expanded to O(D^9)
  * from their catalog definitions (implicit ones solved order by order), their
- * v_2..v_8 (direct and via K, hl_errors_compute), and their closed maps,
+ * v_2..v_8 (direct and via K, hl_vfields_compute), and their closed maps,
  * solved here from the paper's printed discrete equations by exact linear
  * algebra (an independent route to the same map).  The relations between K
  * and the v_k are checked on a nonlinear system (explicit Euler on
@@ -46,7 +46,7 @@ struct hl_paper_work {
     hl_alg *g;                          /* generator, osc */
     hl_alg *exact_map, *euler_map, *dg_map; /* closed maps, osc */
     hl_series *psi_exact, *psi_euler, *psi_dg, *psi_cub[NREL];
-    hl_errors e_exact, e_euler, e_dg, e_cub[NREL];
+    hl_vfields e_exact, e_euler, e_dg, e_cub[NREL];
     int have_e;      /* bit i: e_{exact,euler,dg,cub} filled */
     hl_alg *g_cub;   /* generator, cub */
     hl_series *K_cub[NREL];
@@ -210,7 +210,7 @@ static int map_matches_series(const hl_alg *map, const hl_series *psi, int n, hl
     return ok;
 }
 
-static int expand_catalog(hl_series **psi, hl_errors *e, const char *name, const char *text,
+static int expand_catalog(hl_series **psi, hl_vfields *e, const char *name, const char *text,
                           hl_system *sys, int n, hl_error *err)
 {
     hl_scheme *s = NULL;
@@ -221,7 +221,7 @@ static int expand_catalog(hl_series **psi, hl_errors *e, const char *name, const
     if (st == HL_OK)
         st = hl_scheme_expand(*psi, s, n + 1, err);
     if (st == HL_OK)
-        st = hl_errors_compute(e, *psi, sys, n, err);
+        st = hl_vfields_compute(e, *psi, sys, n, err);
     hl_scheme_free(s);
     return st;
 }
@@ -244,11 +244,11 @@ static void work_clear(struct hl_paper_work *w)
         series_vec_free(w->psi_euler, 2, ctx);
         series_vec_free(w->psi_dg, 2, ctx);
         if (w->have_e & 1)
-            hl_errors_clear(&w->e_exact, w->osc);
+            hl_vfields_clear(&w->e_exact, w->osc);
         if (w->have_e & 2)
-            hl_errors_clear(&w->e_euler, w->osc);
+            hl_vfields_clear(&w->e_euler, w->osc);
         if (w->have_e & 4)
-            hl_errors_clear(&w->e_dg, w->osc);
+            hl_vfields_clear(&w->e_dg, w->osc);
     }
     if (w->cub != NULL) {
         hl_alg_ctx *ctx = hl_system_ctx(w->cub);
@@ -258,7 +258,7 @@ static void work_clear(struct hl_paper_work *w)
             hl_alg_vec_free(w->psiT_cub[s], 2, ctx);
         }
         for (int s = 0; s < w->have_cub; s++)
-            hl_errors_clear(&w->e_cub[s], w->cub);
+            hl_vfields_clear(&w->e_cub[s], w->cub);
         hl_alg_vec_free(w->g_cub, 2, ctx);
     }
     free(w->euler_map_how);
@@ -354,7 +354,7 @@ static char *strf(const char *fmt, const char *a)
     return hl_buf_take(&b);
 }
 
-static const char *agree_text(const hl_errors *e)
+static const char *agree_text(const hl_vfields *e)
 {
     return e->agree ? "agree" : "DISAGREE";
 }
@@ -457,7 +457,7 @@ static int f_exact_w(struct hl_paper_work *w, const row_t *r, hl_alg *out, char 
         fmpz_fac_ui(fmpq_denref(f), (ulong)k);
         fmpz_one(fmpq_numref(f));
         for (int i = 0; i < 2; i++) {
-            hl_alg_mul(&t, &Dk, &hl_errors_field(&w->e_exact, k)[i], ctx);
+            hl_alg_mul(&t, &Dk, &hl_vfields_v(&w->e_exact, k)[i], ctx);
             hl_alg_scalar_mul_fmpq(&t, &t, f, ctx);
             hl_alg_add(&out[i], &out[i], &t, ctx);
         }
@@ -550,10 +550,10 @@ static int f_dg_K(struct hl_paper_work *w, const row_t *r, hl_alg *out, char **h
     return f_K(w, w->dg_map, w->psi_dg, out, how, err);
 }
 
-static int f_v(const hl_errors *e, const char *scheme, const char *closed, hl_system *sys,
+static int f_v(const hl_vfields *e, const char *scheme, const char *closed, hl_system *sys,
                const row_t *r, hl_alg *out, char **how)
 {
-    copy2(out, hl_errors_field(e, r->arg), sys);
+    copy2(out, hl_vfields_v(e, r->arg), sys);
     hl_buf b;
     hl_buf_init(&b);
     hl_buf_printf(&b, "v_%d of %s: directly (expansion minus the Lie series) and from K alone: "
@@ -587,7 +587,7 @@ static int f_rk4_map(struct hl_paper_work *w, const row_t *r, hl_alg *out, char 
     hl_errors_correct_map(out, &w->e_euler, 4, w->osc);
     /* against the catalog's RK4 (a Butcher tableau), expanded */
     hl_series *psi = NULL;
-    hl_errors e;
+    hl_vfields e;
     int st = expand_catalog(&psi, &e, "rk4", NULL, w->osc, NV, err);
     int ok = st == HL_OK ? map_matches_series(out, psi, NV + 1, w->osc) : -1;
     hl_buf b;
@@ -598,7 +598,7 @@ static int f_rk4_map(struct hl_paper_work *w, const row_t *r, hl_alg *out, char 
     if (st == HL_OK)
         hl_buf_printf(&b, "; rk4 re-analysed: order %d", e.order);
     *how = hl_buf_take(&b);
-    hl_errors_clear(&e, w->osc);
+    hl_vfields_clear(&e, w->osc);
     series_vec_free(psi, 2, hl_system_ctx(w->osc));
     return st;
 }
@@ -658,7 +658,7 @@ static int f_dg_sign(struct hl_paper_work *w, const row_t *r, hl_alg *out, char 
     hl_alg_ctx *ctx = hl_system_ctx(w->osc);
     hl_errfield F;
     int m = w->e_dg.leading;
-    int st = hl_errfield_classify(&F, hl_errors_field(&w->e_dg, m), w->osc, err);
+    int st = hl_errfield_classify(&F, hl_vfields_v(&w->e_dg, m), w->osc, err);
     if (st != HL_OK)
         return st;
     fmpq_t c;

@@ -69,9 +69,9 @@ static int arb_fn(const arb_t t, arb_srcptr z, void *arg)
     return 0;
 }
 
-int hl_run_adaptive_arb(hl_run *r, arb_srcptr z0, double digits, const char *T, long n,
-                        long every, hl_run_arb_fn fn, void *arg, hl_run_stats *stats,
-                        hl_error *err)
+hl_status hl_run_adaptive_arb(hl_run *r, arb_srcptr z0, double digits, const char *T, long n,
+                              long every, hl_run_arb_fn fn, void *arg, hl_run_stats *stats,
+                              hl_error *err)
 {
     hl_run_stats local;
     hl_run_stats *s = stats != NULL ? stats : &local;

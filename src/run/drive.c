@@ -288,8 +288,8 @@ static int start(drive *d, hl_run *r, const double *z0, double dt, double t, lon
     return HL_OK;
 }
 
-int hl_run_fixed(hl_run *r, const double *z0, double dt, double t, long every,
-                 hl_run_fn fn, void *arg, hl_run_stats *stats, hl_error *err)
+hl_status hl_run_fixed(hl_run *r, const double *z0, double dt, double t, long every, hl_run_fn fn,
+                       void *arg, hl_run_stats *stats, hl_error *err)
 {
     hl_run_stats local;
     hl_run_stats *s = stats != NULL ? stats : &local;
@@ -355,9 +355,8 @@ static int adaptive_fn(double t, const double *z, void *arg)
     return 0;
 }
 
-int hl_run_adaptive(hl_run *r, const double *z0, double tol, double dt, double t,
-                    long every, hl_run_fn fn, void *arg, hl_run_stats *stats,
-                    hl_error *err)
+hl_status hl_run_adaptive(hl_run *r, const double *z0, double tol, double dt, double t, long every,
+                          hl_run_fn fn, void *arg, hl_run_stats *stats, hl_error *err)
 {
     hl_run_stats local;
     hl_run_stats *s = stats != NULL ? stats : &local;
@@ -417,8 +416,8 @@ int hl_run_adaptive(hl_run *r, const double *z0, double tol, double dt, double t
 
 /* ---- observed orders ---------------------------------------------------- */
 
-int hl_run_orders(double *errmax, double *errfinal, double *order, hl_run *r,
-                  const double *z0, const double *dts, int n, double t, hl_error *err)
+hl_status hl_run_orders(double *errmax, double *errfinal, double *order, hl_run *r,
+                        const double *z0, const double *dts, int n, double t, hl_error *err)
 {
     int on = r->ref_on;
     r->ref_on = 1;

@@ -26,7 +26,7 @@ static const hl_expr *resolve(hl_system *sys, const hl_expr *e)
     return r;
 }
 
-int hl_run_new(hl_run **out, hl_system *sys, const hl_scheme *scheme, hl_error *err)
+hl_status hl_run_new(hl_run **out, hl_system *sys, const hl_scheme *scheme, hl_error *err)
 {
     *out = NULL;
     if (!hl_system_has_H(sys))
@@ -65,8 +65,8 @@ int hl_run_new(hl_run **out, hl_system *sys, const hl_scheme *scheme, hl_error *
     return HL_OK;
 }
 
-int hl_run_new_stepper(hl_run **out, hl_system *sys, hl_run_step_fn step, void *arg,
-                       hl_error *err)
+hl_status hl_run_new_stepper(hl_run **out, hl_system *sys, hl_run_step_fn step, void *arg,
+                             hl_error *err)
 {
     *out = NULL;
     if (step == NULL)
@@ -131,7 +131,7 @@ static int is_var(const hl_run *r, const char *name)
     return 0;
 }
 
-int hl_run_observe(hl_run *r, const char *formula, hl_error *err)
+hl_status hl_run_observe(hl_run *r, const char *formula, hl_error *err)
 {
     const hl_expr *e;
     int st = hl_parse(&e, hl_system_pool(r->sys), formula, err);
@@ -199,7 +199,7 @@ static char *arb_at(const void *z, int i)
     return s;
 }
 
-int hl_run_check_start(hl_run *r, const double *z0, hl_error *err)
+hl_status hl_run_check_start(hl_run *r, const double *z0, hl_error *err)
 {
     int st = hl_run_compile_(r, err);
     if (st != HL_OK)
@@ -208,7 +208,7 @@ int hl_run_check_start(hl_run *r, const double *z0, hl_error *err)
     return isfinite(r->vals[0]) ? HL_OK : outside_domain(r, double_at, z0, err);
 }
 
-int hl_run_check_start_arb(hl_run *r, arb_srcptr z0, slong prec, hl_error *err)
+hl_status hl_run_check_start_arb(hl_run *r, arb_srcptr z0, slong prec, hl_error *err)
 {
     int st = hl_run_compile_(r, err);
     if (st != HL_OK)
@@ -361,13 +361,13 @@ static int init_values(double *z, arb_ptr za, slong prec, hl_system *sys, const 
     return st;
 }
 
-int hl_run_init_values(double *z, hl_system *sys, const char *init, hl_error *err)
+hl_status hl_run_init_values(double *z, hl_system *sys, const char *init, hl_error *err)
 {
     return init_values(z, NULL, 0, sys, init, err);
 }
 
-int hl_run_init_values_arb(arb_ptr z, hl_system *sys, const char *init, slong prec,
-                           hl_error *err)
+hl_status hl_run_init_values_arb(arb_ptr z, hl_system *sys, const char *init, slong prec,
+                                 hl_error *err)
 {
     double *zd = hl_xmalloc((size_t)(2 * hl_system_ndof(sys)) * sizeof *zd);
     int st = init_values(zd, z, prec, sys, init, err);
@@ -375,7 +375,7 @@ int hl_run_init_values_arb(arb_ptr z, hl_system *sys, const char *init, slong pr
     return st;
 }
 
-int hl_run_nsteps(long *n, double dt, double t, hl_error *err)
+hl_status hl_run_nsteps(long *n, double dt, double t, hl_error *err)
 {
     if (!(dt > 0) || !isfinite(dt))
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0,

@@ -164,7 +164,7 @@ static int read_text(hl_scheme **out, const char *name, const char *text, const 
     return sb_finish(out, &b, err);
 }
 
-int hl_scheme_from_text(hl_scheme **out, const char *def, hl_system *sys, hl_error *err)
+hl_status hl_scheme_from_text(hl_scheme **out, const char *def, hl_system *sys, hl_error *err)
 {
     *out = NULL;
     return read_text(out, "user", def, hl_system_step(sys), sys, err);
@@ -172,8 +172,8 @@ int hl_scheme_from_text(hl_scheme **out, const char *def, hl_system *sys, hl_err
 
 /* ---- compositions --------------------------------------------------------- */
 
-int hl_scheme_compose(hl_scheme **out, const char *name, const char *text, int r,
-                      const char *const *c, hl_system *sys, hl_error *err)
+hl_status hl_scheme_compose(hl_scheme **out, const char *name, const char *text, int r,
+                            const char *const *c, hl_system *sys, hl_error *err)
 {
     *out = NULL;
     if (r < 1)
@@ -249,8 +249,8 @@ static int all_zero(int s, const char *const *coef)
     return 1;
 }
 
-int hl_scheme_rk(hl_scheme **out, const char *name, int s, const char *const *A,
-                 const char *const *b, hl_system *sys, hl_error *err)
+hl_status hl_scheme_rk(hl_scheme **out, const char *name, int s, const char *const *A,
+                       const char *const *b, hl_system *sys, hl_error *err)
 {
     *out = NULL;
     if (s < 1 || s > 64)
@@ -293,7 +293,7 @@ static const char *const gauss3_b[] = {"5/18", "4/9", "5/18"};
 
 /* ---- Lie series ----------------------------------------------------------- */
 
-int hl_scheme_lie(hl_scheme **out, int n, hl_system *sys, hl_error *err)
+hl_status hl_scheme_lie(hl_scheme **out, int n, hl_system *sys, hl_error *err)
 {
     *out = NULL;
     if (n < 1 || n > HL_LIE_MAX_ORDER)
@@ -493,7 +493,7 @@ static int exact_flow(hl_scheme **out, hl_system *sys, hl_error *err)
 
 /* The member of lieN a name asks for: its order in *n, or an error that
  * gives the range.  "lie" alone takes its order from param (> 0). */
-static int lie_member(int *n, const char *name, int param, hl_error *err)
+static hl_status lie_member(int *n, const char *name, int param, hl_error *err)
 {
     long k = strcmp(name, "lie") == 0 ? param : lie_order(name);
     if (k >= 1 && k <= HL_SCHEME_LIE_MAX) {
@@ -514,12 +514,12 @@ static int lie_member(int *n, const char *name, int param, hl_error *err)
 
 static int is_lie_name(const char *name) { return strncmp(name, "lie", 3) == 0; }
 
-int hl_scheme_new(hl_scheme **out, const char *name, int param, hl_system *sys,
-                  hl_error *err)
+hl_status hl_scheme_new(hl_scheme **out, const char *name, int param, hl_system *sys, hl_error *err)
 {
     *out = NULL;
     if (is_lie_name(name)) {
-        int n = 0, st = lie_member(&n, name, param, err);
+        int n = 0;
+        hl_status st = lie_member(&n, name, param, err);
         if (st == HL_OK && !hl_system_has_H(sys))
             st = hl_error_set(err, HL_EINVAL, NULL, -1, 0,
                               "the scheme '%s' needs a Hamiltonian", name);

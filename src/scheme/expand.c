@@ -200,7 +200,7 @@ static int check_start(const hl_series *Z, const hl_scheme *s, int n, hl_alg_ctx
     return st;
 }
 
-int hl_scheme_expand(hl_series *Z, const hl_scheme *s, int n, hl_error *err)
+hl_status hl_scheme_expand(hl_series *Z, const hl_scheme *s, int n, hl_error *err)
 {
     if (n < 1 || n > HL_SERIES_MAX_N)
         return hl_error_set(err, HL_ELIMIT, NULL, -1, 0, "series length %d outside 1..%d", n,

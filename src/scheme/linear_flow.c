@@ -184,7 +184,7 @@ static int coupled(int *other, const hl_alg *hess, int j, hl_system *sys)
     return 0;
 }
 
-int hl_scheme_linear_flow(hl_alg *images, hl_system *sys, hl_error *err)
+hl_status hl_scheme_linear_flow(hl_alg *images, hl_system *sys, hl_error *err)
 {
     if (!hl_system_has_H(sys))
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "the exact flow needs a Hamiltonian");
@@ -203,7 +203,7 @@ int hl_scheme_linear_flow(hl_alg *images, hl_system *sys, hl_error *err)
     return st;
 }
 
-int hl_scheme_linear_modes(char **text, hl_system *sys, hl_error *err)
+hl_status hl_scheme_linear_modes(char **text, hl_system *sys, hl_error *err)
 {
     *text = NULL;
     if (!hl_system_has_H(sys))
@@ -236,7 +236,7 @@ int hl_scheme_linear_flow_applies(hl_system *sys)
     return st == HL_OK;
 }
 
-int hl_scheme_linear_flow_map(char **map, hl_system *sys, hl_error *err)
+hl_status hl_scheme_linear_flow_map(char **map, hl_system *sys, hl_error *err)
 {
     *map = NULL;
     hl_alg_ctx *ctx = hl_system_ctx(sys);

@@ -429,7 +429,7 @@ static int compile_newton(hl_scheme_stepper *st, const hl_scheme *s, const hl_ex
     return rc;
 }
 
-int hl_scheme_step_exprs(const hl_expr **Z, const hl_scheme *s, hl_error *err)
+hl_status hl_scheme_step_exprs(const hl_expr **Z, const hl_scheme *s, hl_error *err)
 {
     hl_pool *pool = hl_system_pool(s->sys);
     int m = s->m, N = s->N, st = HL_OK;
@@ -550,7 +550,7 @@ static int stepper_build(hl_scheme_stepper **out, const hl_scheme *s, int taylor
     return HL_OK;
 }
 
-int hl_scheme_stepper_new(hl_scheme_stepper **out, const hl_scheme *s, hl_error *err)
+hl_status hl_scheme_stepper_new(hl_scheme_stepper **out, const hl_scheme *s, hl_error *err)
 {
     int rc = stepper_build(out, s, 1, err);
     hl_scheme_stepper *st = *out;
@@ -672,7 +672,7 @@ static int energy_check(hl_scheme_stepper *st, const double *z, const double *Z,
                             : "");
 }
 
-int hl_scheme_step(hl_scheme_stepper *st, double *z, double D, double t, hl_error *err)
+hl_status hl_scheme_step(hl_scheme_stepper *st, double *z, double D, double t, hl_error *err)
 {
     int N = st->N;
     memcpy(st->in, z, (size_t)(2 * N) * sizeof *z);

@@ -166,13 +166,12 @@ static int read_user(hl_scheme **out, const char *text, int is_map, hl_system *s
     return st;
 }
 
-int hl_scheme_from_map(hl_scheme **out, const char *map, hl_system *sys, hl_error *err)
+hl_status hl_scheme_from_map(hl_scheme **out, const char *map, hl_system *sys, hl_error *err)
 {
     return read_user(out, map, 1, sys, err);
 }
 
-int hl_scheme_from_equations(hl_scheme **out, const char *eqs, hl_system *sys,
-                             hl_error *err)
+hl_status hl_scheme_from_equations(hl_scheme **out, const char *eqs, hl_system *sys, hl_error *err)
 {
     return read_user(out, eqs, 0, sys, err);
 }

@@ -175,8 +175,8 @@ static int atom_series(hl_series *r, const hl_alg *a, int var, int n, hl_alg_ctx
     return status;
 }
 
-int hl_series_from_alg(hl_series *r, const hl_alg *a, int var, int n, hl_alg_ctx *ctx,
-                       hl_error *err)
+hl_status hl_series_from_alg(hl_series *r, const hl_alg *a, int var, int n, hl_alg_ctx *ctx,
+                             hl_error *err)
 {
     if (n < 0 || n > HL_SERIES_MAX_N)
         return hl_error_set(err, HL_ELIMIT, NULL, -1, 0, "series length %d outside 0..%d", n,

@@ -35,8 +35,8 @@ static int generator(hl_alg *r, const hl_alg *f, int ndof, const int *qv, const 
     return status;
 }
 
-int hl_series_lie(hl_series *r, const hl_alg *phi, const hl_alg *H, int ndof, const int *qvars,
-                  const int *pvars, int n, hl_alg_ctx *ctx, hl_error *err)
+hl_status hl_series_lie(hl_series *r, const hl_alg *phi, const hl_alg *H, int ndof,
+                        const int *qvars, const int *pvars, int n, hl_alg_ctx *ctx, hl_error *err)
 {
     if (n < 0 || n > HL_SERIES_MAX_N)
         return hl_error_set(err, HL_ELIMIT, NULL, -1, 0, "series length %d outside 0..%d", n,
@@ -75,8 +75,8 @@ static int compose(hl_series *r, int m, const hl_series *A, int nvars, const int
                    const hl_series *B, int var_D, long max_terms, hl_alg_ctx *ctx,
                    hl_error *err);
 
-int hl_series_compose(hl_series *r, int m, const hl_series *A, int nvars, const int *vars,
-                      const hl_series *B, int var_D, hl_alg_ctx *ctx, hl_error *err)
+hl_status hl_series_compose(hl_series *r, int m, const hl_series *A, int nvars, const int *vars,
+                            const hl_series *B, int var_D, hl_alg_ctx *ctx, hl_error *err)
 {
     return compose(r, m, A, nvars, vars, B, var_D, 0, ctx, err);
 }
@@ -133,14 +133,14 @@ static int compose(hl_series *r, int m, const hl_series *A, int nvars, const int
     return status;
 }
 
-int hl_series_scheme_K(hl_series *K, int m, const hl_series *psi, const int *vars, int var_D,
-                       hl_alg_ctx *ctx, hl_error *err)
+hl_status hl_series_scheme_K(hl_series *K, int m, const hl_series *psi, const int *vars, int var_D,
+                             hl_alg_ctx *ctx, hl_error *err)
 {
     return hl_series_scheme_K_bounded(K, m, psi, vars, var_D, 0, ctx, err);
 }
 
-int hl_series_scheme_K_bounded(hl_series *K, int m, const hl_series *psi, const int *vars,
-                               int var_D, long max_terms, hl_alg_ctx *ctx, hl_error *err)
+hl_status hl_series_scheme_K_bounded(hl_series *K, int m, const hl_series *psi, const int *vars,
+                                     int var_D, long max_terms, hl_alg_ctx *ctx, hl_error *err)
 {
     hl_series *dpsi = hl_xmalloc((size_t)(m > 0 ? m : 1) * sizeof *dpsi);
     hl_series *back = hl_xmalloc((size_t)(m > 0 ? m : 1) * sizeof *back);

@@ -164,8 +164,8 @@ void hl_series_mul(hl_series *r, const hl_series *a, const hl_series *b, hl_alg_
     hl_series_clear(&t, ctx);
 }
 
-int hl_series_div(hl_series *r, const hl_series *a, const hl_series *b, hl_alg_ctx *ctx,
-                  hl_error *err)
+hl_status hl_series_div(hl_series *r, const hl_series *a, const hl_series *b, hl_alg_ctx *ctx,
+                        hl_error *err)
 {
     int n = min2(a->n, b->n);
     if (n == 0) {
@@ -223,7 +223,7 @@ void hl_series_scalar_mul_fmpq(hl_series *r, const hl_series *a, const fmpq_t c,
     r->n = a->n;
 }
 
-int hl_series_pow_si(hl_series *r, const hl_series *a, long e, hl_alg_ctx *ctx, hl_error *err)
+hl_status hl_series_pow_si(hl_series *r, const hl_series *a, long e, hl_alg_ctx *ctx, hl_error *err)
 {
     hl_series base, acc;
     int status = HL_OK;

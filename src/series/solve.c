@@ -363,8 +363,8 @@ static int orders(solver *S, hl_error *err)
     return status;
 }
 
-int hl_series_solve(hl_series *Z, int m, const hl_eqn *eqs, const char *const *unknowns,
-                    const hl_alg *z0, const char *step, int n, hl_alg_ctx *ctx, hl_error *err)
+hl_status hl_series_solve(hl_series *Z, int m, const hl_eqn *eqs, const char *const *unknowns,
+                          const hl_alg *z0, const char *step, int n, hl_alg_ctx *ctx, hl_error *err)
 {
     if (m < 1)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "no equations");

@@ -803,8 +803,8 @@ int series_prog_run(series_prog *p, int n, const hl_series *inputs, hl_alg_ctx *
 
 /* ---- public entry points -------------------------------------------------------- */
 
-int hl_series_eval_expr(hl_series *out, const hl_expr *e, int nsym, const char *const *names,
-                        const hl_series *vals, int n, hl_alg_ctx *ctx, hl_error *err)
+hl_status hl_series_eval_expr(hl_series *out, const hl_expr *e, int nsym, const char *const *names,
+                              const hl_series *vals, int n, hl_alg_ctx *ctx, hl_error *err)
 {
     series_prog *p;
     int status = series_prog_compile(&p, 1, &e, nsym, names, n, ctx, err);
@@ -835,15 +835,16 @@ static int apply_node(hl_series *r, const hl_series *a, int op, hl_fun f, const 
     return status;
 }
 
-int hl_series_apply(hl_series *r, hl_fun f, const hl_series *a, hl_alg_ctx *ctx, hl_error *err)
+hl_status hl_series_apply(hl_series *r, hl_fun f, const hl_series *a, hl_alg_ctx *ctx,
+                          hl_error *err)
 {
     if ((unsigned)f >= HL_FUN_COUNT || hl_fun_arity(f) != 1)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "unknown function of one argument");
     return apply_node(r, a, OP_FUN, f, NULL, ctx, err);
 }
 
-int hl_series_pow_fmpq(hl_series *r, const hl_series *a, const fmpq_t e, hl_alg_ctx *ctx,
-                       hl_error *err)
+hl_status hl_series_pow_fmpq(hl_series *r, const hl_series *a, const fmpq_t e, hl_alg_ctx *ctx,
+                             hl_error *err)
 {
     if (fmpz_is_one(fmpq_denref(e)) && fmpz_fits_si(fmpq_numref(e)))
         return hl_series_pow_si(r, a, fmpz_get_si(fmpq_numref(e)), ctx, err);

@@ -629,8 +629,8 @@ static int fold_constants(hl_tape *t, hl_error *err)
     return status;
 }
 
-int hl_tape_new(hl_tape **out, const hl_expr *const *outs, int nout,
-                const char *const *inputs, int nin, hl_error *err)
+hl_status hl_tape_new(hl_tape **out, const hl_expr *const *outs, int nout,
+                      const char *const *inputs, int nin, hl_error *err)
 {
     *out = NULL;
     if (nin < 0 || nout < 0)

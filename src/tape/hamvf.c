@@ -5,10 +5,9 @@
 #include "base/buf.h"
 #include "hamlie/tape.h"
 
-int hl_tape_hamiltonian(hl_tape **out, hl_pool *pool, const hl_expr *H, int N,
-                        const char *const *q, const char *const *p, int nparams,
-                        const char *const *params, const hl_expr *const *vals,
-                        hl_error *err)
+hl_status hl_tape_hamiltonian(hl_tape **out, hl_pool *pool, const hl_expr *H, int N,
+                              const char *const *q, const char *const *p, int nparams,
+                              const char *const *params, const hl_expr *const *vals, hl_error *err)
 {
     *out = NULL;
     if (N <= 0)

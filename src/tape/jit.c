@@ -1467,7 +1467,7 @@ static void build_newton(nj *N, const hl_newton *nw)
     free(uv), free(av), free(N->u);
 }
 
-int hl_newton_jit(hl_newton *nw, hl_error *err)
+hl_status hl_newton_jit(hl_newton *nw, hl_error *err)
 {
     if (nw->m > 16)
         return hl_error_set(err, HL_EUNSUP, NULL, -1, 0,
@@ -1514,7 +1514,7 @@ int hl_newton_jit(hl_newton *nw, hl_error *err)
     return HL_OK;
 }
 
-int hl_tape_jit(hl_tape *t, hl_error *err)
+hl_status hl_tape_jit(hl_tape *t, hl_error *err)
 {
     gcc_jit_context *c = gcc_jit_context_acquire();
     if (c == NULL)
@@ -1585,13 +1585,13 @@ const char *__lsan_default_suppressions(void)
 
 #else /* no libgccjit */
 
-int hl_newton_jit(hl_newton *nw, hl_error *err)
+hl_status hl_newton_jit(hl_newton *nw, hl_error *err)
 {
     (void)nw;
     return hl_error_set(err, HL_EUNSUP, NULL, -1, 0, "hamlie was built without libgccjit");
 }
 
-int hl_tape_jit(hl_tape *t, hl_error *err)
+hl_status hl_tape_jit(hl_tape *t, hl_error *err)
 {
     (void)t;
     return hl_error_set(err, HL_EUNSUP, NULL, -1, 0, "hamlie was built without libgccjit");

@@ -447,7 +447,7 @@ static int run_cc(const char *cc, const char *src, const char *so, hl_error *err
     return HL_OK;
 }
 
-int hl_tape_native(hl_tape *t, int order, hl_error *err)
+hl_status hl_tape_native(hl_tape *t, int order, hl_error *err)
 {
     if (order < 1 || order > 1000)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "native order must be 1..1000 (got %d)", order);

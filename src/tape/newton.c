@@ -9,8 +9,8 @@
 #include "base/buf.h"
 #include "tape/tape_impl.h"
 
-int hl_newton_new(hl_newton **out, hl_tape *start, hl_tape *F, hl_tape *FJ, int max_iter,
-                  hl_error *err)
+hl_status hl_newton_new(hl_newton **out, hl_tape *start, hl_tape *F, hl_tape *FJ, int max_iter,
+                        hl_error *err)
 {
     *out = NULL;
     int nx = hl_tape_ninputs(start), m = hl_tape_noutputs(start);

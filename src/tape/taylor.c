@@ -240,7 +240,7 @@ void hl_tape_taylor_d(double *out, const double *in, int order, hl_tape *t)
         memcpy(out + (size_t)j * S, t->td + (size_t)t->outreg[j] * S, (size_t)S * sizeof *out);
 }
 
-int hl_tape_taylor_ode_d(double *z, int order, hl_tape *t, hl_error *err)
+hl_status hl_tape_taylor_ode_d(double *z, int order, hl_tape *t, hl_error *err)
 {
     if (t->nin != t->nout)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0,

@@ -245,7 +245,7 @@ void hl_tape_taylor_arb(arb_ptr out, arb_srcptr in, int order, slong prec, hl_ta
         _arb_vec_set(out + (size_t)j * S, t->ta + (size_t)t->outreg[j] * S, S);
 }
 
-int hl_tape_taylor_ode_arb(arb_ptr z, int order, slong prec, hl_tape *t, hl_error *err)
+hl_status hl_tape_taylor_ode_arb(arb_ptr z, int order, slong prec, hl_tape *t, hl_error *err)
 {
     if (t->nin != t->nout)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0,

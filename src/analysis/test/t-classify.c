@@ -12,7 +12,7 @@
 #include "hamlie/scheme.h"
 #include "hl_test.h"
 
-static int leading(hl_errors *e, hl_system *sys, hl_scheme *s, int n)
+static int leading(hl_vfields *e, hl_system *sys, hl_scheme *s, int n)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     hl_series Z[2];
@@ -21,7 +21,7 @@ static int leading(hl_errors *e, hl_system *sys, hl_scheme *s, int n)
     hl_series_init(&Z[1], 0, ctx);
     int st = hl_scheme_expand(Z, s, n + 1, &err);
     if (st == HL_OK)
-        st = hl_errors_compute(e, Z, sys, n, &err);
+        st = hl_vfields_compute(e, Z, sys, n, &err);
     if (st != HL_OK)
         fprintf(stderr, "%s\n", err.msg);
     hl_series_clear(&Z[0], ctx);
@@ -38,7 +38,7 @@ int main(void)
         return 2;
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     hl_scheme *s;
-    hl_errors e;
+    hl_vfields e;
     hl_errfield F;
     hl_alg w;
     hl_alg_init(&w, ctx);
@@ -46,13 +46,13 @@ int main(void)
                                  "P = p - D*x - D^2*p/2 - D^2*(x^2+p^2)*x/2",
                              sys, &err) == HL_OK);
     CHECK(leading(&e, sys, s, 4) == HL_OK && e.agree && e.leading == 2);
-    CHECK(hl_errfield_classify(&F, hl_errors_field(&e, 2), sys, &err) == HL_OK);
+    CHECK(hl_errfield_classify(&F, hl_vfields_v(&e, 2), sys, &err) == HL_OK);
     CHECK(F.kind == HL_ERRFIELD_PARALLEL);
     CHECK(hl_system_read(&w, sys, "x^2 + p^2", &err) == HL_OK && hl_alg_equal(&F.lambda, &w, ctx));
     CHECK(F.hamiltonian && F.have_h);
     CHECK(hl_system_read(&w, sys, "(x^2 + p^2)^2/4", &err) == HL_OK && hl_alg_equal(&F.h, &w, ctx));
     hl_errfield_clear(&F, sys);
-    hl_errors_clear(&e, sys);
+    hl_vfields_clear(&e, sys);
     hl_scheme_free(s);
     hl_alg_clear(&w, ctx);
     hl_system_free(sys);
@@ -65,13 +65,13 @@ int main(void)
     CHECK(hl_scheme_new(&s, "euler", 0, sys, &err) == HL_OK);
     CHECK(leading(&e, sys, s, 3) == HL_OK && e.agree && e.leading == 2);
     CHECK(hl_system_read(&w, sys, "sin(q)", &err) == HL_OK &&
-          hl_alg_equal(&hl_errors_field(&e, 2)[0], &w, ctx));
+          hl_alg_equal(&hl_vfields_v(&e, 2)[0], &w, ctx));
     CHECK(hl_system_read(&w, sys, "p*cos(q)", &err) == HL_OK &&
-          hl_alg_equal(&hl_errors_field(&e, 2)[1], &w, ctx));
-    CHECK(hl_errfield_classify(&F, hl_errors_field(&e, 2), sys, &err) == HL_OK);
+          hl_alg_equal(&hl_vfields_v(&e, 2)[1], &w, ctx));
+    CHECK(hl_errfield_classify(&F, hl_vfields_v(&e, 2), sys, &err) == HL_OK);
     CHECK(F.kind == HL_ERRFIELD_GENERAL && !F.hamiltonian);
     hl_errfield_clear(&F, sys);
-    hl_errors_clear(&e, sys);
+    hl_vfields_clear(&e, sys);
     hl_scheme_free(s);
     hl_alg_clear(&w, ctx);
     hl_system_free(sys);

@@ -72,8 +72,8 @@ int main(void)
     }
 
     /* corrected Euler = RK4 */
-    hl_errors e;
-    CHECK(hl_errors_compute(&e, E, sys, 4, &err) == HL_OK && e.agree);
+    hl_vfields e;
+    CHECK(hl_vfields_compute(&e, E, sys, 4, &err) == HL_OK && e.agree);
     hl_series *C = expand(sys, "euler", NN), *R = expand(sys, "rk4", NN);
     hl_errors_correct_series(C, E, &e, 4, sys);
     CHECK(C[0].n == NN && hl_series_equal(&C[0], &R[0], ctx) && hl_series_equal(&C[1], &R[1], ctx));
@@ -81,11 +81,11 @@ int main(void)
     CHECK(hl_system_read(&w[0], sys, "(1 - D^2/2 + D^4/24)*x + (D - D^3/6)*p", &err) == HL_OK);
     CHECK(hl_system_read(&w[1], sys, "(1 - D^2/2 + D^4/24)*p - (D - D^3/6)*x", &err) == HL_OK);
     CHECK(hl_alg_equal(&img[0], &w[0], ctx) && hl_alg_equal(&img[1], &w[1], ctx));
-    hl_errors e2;
-    CHECK(hl_errors_compute(&e2, C, sys, 7, &err) == HL_OK);
+    hl_vfields e2;
+    CHECK(hl_vfields_compute(&e2, C, sys, 7, &err) == HL_OK);
     CHECK(e2.agree && e2.order == 4);
-    hl_errors_clear(&e2, sys);
-    hl_errors_clear(&e, sys);
+    hl_vfields_clear(&e2, sys);
+    hl_vfields_clear(&e, sys);
 
     /* an implicit scheme has no closed-form map */
     hl_scheme *mid;

@@ -1,5 +1,5 @@
-/* hl_errors_compute_direct: the same v_k, leading field and order as
- * hl_errors_compute (which also recomputes them from K(D)), without the
+/* hl_vfields_compute_direct: the same v_k, leading field and order as
+ * hl_vfields_compute (which also recomputes them from K(D)), without the
  * cross-check, and says so (checked = agree = 0) — on RK4 for Henon-Heiles,
  * the implicit midpoint for the pendulum and Euler for the oscillator. */
 #include <stdlib.h>
@@ -20,13 +20,13 @@ static void same_fields(const char *H, const char *scheme, int want_order)
     hl_series *psi = malloc((size_t)m * sizeof *psi);
     for (int i = 0; i < m; i++)
         hl_series_init(&psi[i], 0, ctx);
-    hl_errors both = {0}, direct = {0};
+    hl_vfields both = {0}, direct = {0};
     hl_error err;
-    int st = hl_scheme_new(&s, scheme, 0, sys, &err);
+    hl_status st = hl_scheme_new(&s, scheme, 0, sys, &err);
     if (st == HL_OK)
         st = hl_scheme_expand(psi, s, ORDER + 1, &err);
-    int st1 = st == HL_OK ? hl_errors_compute(&both, psi, sys, ORDER, &err) : st;
-    int st2 = st == HL_OK ? hl_errors_compute_direct(&direct, psi, sys, ORDER, &err) : st;
+    hl_status st1 = st == HL_OK ? hl_vfields_compute(&both, psi, sys, ORDER, &err) : st;
+    hl_status st2 = st == HL_OK ? hl_vfields_compute_direct(&direct, psi, sys, ORDER, &err) : st;
     CHECK_MSG(st1 == HL_OK && st2 == HL_OK, "%s on %s: %s", scheme, H, err.msg);
     if (st1 == HL_OK && st2 == HL_OK) {
         CHECK(both.checked && both.agree && !direct.checked && !direct.agree);
@@ -37,12 +37,12 @@ static void same_fields(const char *H, const char *scheme, int want_order)
         int same = 1;
         for (int k = 2; k <= ORDER; k++)
             for (int i = 0; i < m; i++)
-                same = same && hl_alg_equal(&hl_errors_field(&direct, k)[i],
-                                            &hl_errors_field(&both, k)[i], ctx);
+                same = same &&
+                       hl_alg_equal(&hl_vfields_v(&direct, k)[i], &hl_vfields_v(&both, k)[i], ctx);
         CHECK_MSG(same, "%s on %s: the direct v_k differ", scheme, H);
     }
-    hl_errors_clear(&both, sys);
-    hl_errors_clear(&direct, sys);
+    hl_vfields_clear(&both, sys);
+    hl_vfields_clear(&direct, sys);
     for (int i = 0; i < m; i++)
         hl_series_clear(&psi[i], ctx);
     free(psi);

@@ -14,7 +14,7 @@
 #include "hl_test.h"
 #include "analysis_test.h"
 
-static int errors_of(hl_errors *e, hl_system *sys, const char *name, int n)
+static int errors_of(hl_vfields *e, hl_system *sys, const char *name, int n)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     hl_series Z[2];
@@ -26,7 +26,7 @@ static int errors_of(hl_errors *e, hl_system *sys, const char *name, int n)
     if (st == HL_OK)
         st = hl_scheme_expand(Z, s, n + 1, &err);
     if (st == HL_OK)
-        st = hl_errors_compute(e, Z, sys, n, &err);
+        st = hl_vfields_compute(e, Z, sys, n, &err);
     hl_scheme_free(s);
     hl_series_clear(&Z[0], ctx);
     hl_series_clear(&Z[1], ctx);
@@ -37,7 +37,7 @@ int main(void)
 {
     hl_system *sys = make_system("(p^2+x^2)/2");
     hl_alg_ctx *ctx = hl_system_ctx(sys);
-    hl_errors e;
+    hl_vfields e;
     hl_error err;
     hl_alg *phi, a, b;
     int n, app;
@@ -45,20 +45,19 @@ int main(void)
     hl_alg_init(&b, ctx);
 
     CHECK(errors_of(&e, sys, "euler", 3) == HL_OK);
-    CHECK(hl_field_poly_invariants(&phi, &n, &app, hl_errors_field(&e, 2), 3, sys, &err) == HL_OK);
+    CHECK(hl_field_poly_invariants(&phi, &n, &app, hl_vfields_v(&e, 2), 3, sys, &err) == HL_OK);
     CHECK(app && n == 0);
     hl_alg_vec_free(phi, n, ctx);
-    CHECK(hl_field_darboux_invariants(&phi, &n, &app, hl_errors_field(&e, 2), 2, sys, &err) ==
-          HL_OK);
+    CHECK(hl_field_darboux_invariants(&phi, &n, &app, hl_vfields_v(&e, 2), 2, sys, &err) == HL_OK);
     CHECK(app && n == 1);
     CHECK(hl_system_read(&a, sys, "x/p", &err) == HL_OK);
     CHECK(hl_system_read(&b, sys, "p/x", &err) == HL_OK);
     CHECK(n == 1 && (hl_alg_equal(&phi[0], &a, ctx) || hl_alg_equal(&phi[0], &b, ctx)));
     hl_alg_vec_free(phi, n, ctx);
-    hl_errors_clear(&e, sys);
+    hl_vfields_clear(&e, sys);
 
     CHECK(errors_of(&e, sys, "paper-dg", 3) == HL_OK);
-    CHECK(hl_field_poly_invariants(&phi, &n, &app, hl_errors_field(&e, 3), 2, sys, &err) == HL_OK);
+    CHECK(hl_field_poly_invariants(&phi, &n, &app, hl_vfields_v(&e, 3), 2, sys, &err) == HL_OK);
     CHECK(app && n == 1);
     CHECK(hl_system_read(&a, sys, "x^2 + p^2", &err) == HL_OK);
     if (n == 1) {
@@ -69,17 +68,16 @@ int main(void)
         fmpq_clear(c);
     }
     hl_alg_vec_free(phi, n, ctx);
-    hl_errors_clear(&e, sys);
+    hl_vfields_clear(&e, sys);
     hl_alg_clear(&a, ctx);
     hl_alg_clear(&b, ctx);
     hl_system_free(sys);
 
     hl_system *pend = make_system("p^2/2 - cos(q)");
     CHECK(errors_of(&e, pend, "implicit-midpoint", 3) == HL_OK);
-    CHECK(hl_field_poly_invariants(&phi, &n, &app, hl_errors_field(&e, 3), 2, pend, &err) ==
-          HL_OK);
+    CHECK(hl_field_poly_invariants(&phi, &n, &app, hl_vfields_v(&e, 3), 2, pend, &err) == HL_OK);
     CHECK(!app && n == 0);
-    hl_errors_clear(&e, pend);
+    hl_vfields_clear(&e, pend);
     hl_system_free(pend);
     return HL_TEST_END();
 }

@@ -1,6 +1,6 @@
 /* Numeric error analysis at a point (numerr.h) against the symbolic one:
  * at random points, v_k (k = 2..n) and the coefficients of K(D) from
- * hl_numerr_compute must equal the symbolic v_k (hl_errors_compute) and the
+ * hl_numerr_compute must equal the symbolic v_k (hl_vfields_compute) and the
  * symbolic K series (hl_series_scheme_K), each evaluated at the point with
  * Arb, to 1e-12 relative (plus a round-off allowance k! 1e-14 scale for
  * fields that vanish); on the oscillator, the pendulum, Henon-Heiles and
@@ -84,14 +84,14 @@ static void run_case(const cse *c)
     hl_series *Z = malloc((size_t)m * sizeof *Z), *Ks = malloc((size_t)m * sizeof *Ks);
     for (int i = 0; i < m; i++)
         hl_series_init(&Z[i], 0, ctx), hl_series_init(&Ks[i], 0, ctx);
-    hl_errors e;
+    hl_vfields e;
     memset(&e, 0, sizeof e);
     int vars[64];
     for (int i = 0; i < m; i++)
         vars[i] = i;
     st = hl_scheme_expand(Z, s, n + 1, &err);
     if (st == HL_OK)
-        st = hl_errors_compute(&e, Z, sys, n, &err);
+        st = hl_vfields_compute(&e, Z, sys, n, &err);
     if (st == HL_OK)
         st = hl_series_scheme_K(Ks, m, Z, vars, hl_system_var_D(sys), ctx, &err);
     CHECK_MSG(st == HL_OK, "%s symbolic: %s", label, err.msg);
@@ -116,7 +116,7 @@ static void run_case(const cse *c)
                     continue;
                 double sym[64], big = 0, scale = 0;
                 for (int i = 0; i < m; i++) {
-                    sym[i] = eval_alg(hl_errors_field(&e, k) + i, vals, sys);
+                    sym[i] = eval_alg(hl_vfields_v(&e, k) + i, vals, sys);
                     big = fmax(big, fabs(sym[i]));
                     scale = fmax(scale, fabs(r.flow[k * m + i]) + fabs(r.psi[k * m + i]));
                 }
@@ -149,7 +149,7 @@ static void run_case(const cse *c)
     }
     _arb_vec_clear(vals, nb);
     if (e.v != NULL)
-        hl_errors_clear(&e, sys);
+        hl_vfields_clear(&e, sys);
     for (int i = 0; i < m; i++)
         hl_series_clear(&Z[i], ctx), hl_series_clear(&Ks[i], ctx);
     free(Z);

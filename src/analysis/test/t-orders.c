@@ -31,7 +31,7 @@ static int measure(hl_system *sys, const char *name, int n, double *secs)
     int m = 2 * hl_system_ndof(sys), order = -1;
     hl_scheme *s = NULL;
     hl_error err;
-    hl_errors e;
+    hl_vfields e;
     hl_series *Z = malloc((size_t)m * sizeof *Z);
     for (int i = 0; i < m; i++)
         hl_series_init(&Z[i], 0, ctx);
@@ -43,7 +43,7 @@ static int measure(hl_system *sys, const char *name, int n, double *secs)
     e.N = m / 2;
     e.n = n;
     if (st == HL_OK)
-        st = hl_errors_compute(&e, Z, sys, n, &err);
+        st = hl_vfields_compute(&e, Z, sys, n, &err);
     *secs = (double)(clock() - t0) / CLOCKS_PER_SEC;
     if (st != HL_OK)
         fprintf(stderr, "%s: %s\n", name, err.msg);
@@ -51,7 +51,7 @@ static int measure(hl_system *sys, const char *name, int n, double *secs)
         fprintf(stderr, "%s: v_%d computed two ways disagree\n", name, e.disagree_k);
     else
         order = e.leading ? e.order : 1000;
-    hl_errors_clear(&e, sys);
+    hl_vfields_clear(&e, sys);
     for (int i = 0; i < m; i++)
         hl_series_clear(&Z[i], ctx);
     free(Z);

@@ -22,7 +22,7 @@
 
 #define NORD 8
 
-static int run_errors(hl_errors *e, hl_system *sys, const char *name, int n)
+static int run_errors(hl_vfields *e, hl_system *sys, const char *name, int n)
 {
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     hl_scheme *s;
@@ -34,7 +34,7 @@ static int run_errors(hl_errors *e, hl_system *sys, const char *name, int n)
     if (st == HL_OK)
         st = hl_scheme_expand(Z, s, n + 1, &err);
     if (st == HL_OK)
-        st = hl_errors_compute(e, Z, sys, n, &err);
+        st = hl_vfields_compute(e, Z, sys, n, &err);
     if (st != HL_OK)
         fprintf(stderr, "%s: %s\n", name, err.msg);
     hl_scheme_free(s);
@@ -44,7 +44,7 @@ static int run_errors(hl_errors *e, hl_system *sys, const char *name, int n)
 }
 
 /* Does v_k match k! ([D^k] closed - [D^k] flow) for k = 2..n? */
-static int matches(const hl_errors *e, hl_system *sys, const char *cx, const char *cp, int n)
+static int matches(const hl_vfields *e, hl_system *sys, const char *cx, const char *cp, int n)
 {
     static const char *flow[2] = {"x*cos(D) + p*sin(D)", "p*cos(D) - x*sin(D)"};
     const char *closed[2] = {cx, cp};
@@ -69,7 +69,7 @@ static int matches(const hl_errors *e, hl_system *sys, const char *cx, const cha
             fmpz_fac_ui(fmpq_numref(f), (ulong)k);
             hl_alg_sub(&d, &sc.c[k], &sf.c[k], ctx);
             hl_alg_scalar_mul_fmpq(&d, &d, f, ctx);
-            ok = hl_alg_equal(&d, &hl_errors_field(e, k)[i], ctx);
+            ok = hl_alg_equal(&d, &hl_vfields_v(e, k)[i], ctx);
             if (!ok)
                 fprintf(stderr, "v_%d component %d differs\n", k, i);
         }
@@ -98,7 +98,7 @@ int main(void)
 {
     hl_system *sys = make_system("(p^2+x^2)/2");
     hl_alg_ctx *ctx = hl_system_ctx(sys);
-    hl_errors e;
+    hl_vfields e;
     hl_errfield F;
     hl_error err;
     const char *rot2 = "x*cos(2*atan(D/2)) + p*sin(2*atan(D/2))",
@@ -110,12 +110,12 @@ int main(void)
     CHECK(e.order == 1 && e.leading == 2);
     CHECK(matches(&e, sys, "sqrt(1+D^2)*(x*cos(atan(D)) + p*sin(atan(D)))",
                   "sqrt(1+D^2)*(p*cos(atan(D)) - x*sin(atan(D)))", NORD));
-    CHECK(hl_errfield_classify(&F, hl_errors_field(&e, 2), sys, &err) == HL_OK);
+    CHECK(hl_errfield_classify(&F, hl_vfields_v(&e, 2), sys, &err) == HL_OK);
     CHECK(F.kind == HL_ERRFIELD_SCALING);
     CHECK(F.scale != NULL && is_const(&F.scale[0], 1, 1, ctx) && is_const(&F.scale[1], 1, 1, ctx));
     CHECK(!F.hamiltonian); /* divergence 2: not Hamiltonian */
     hl_errfield_clear(&F, sys);
-    hl_errors_clear(&e, sys);
+    hl_vfields_clear(&e, sys);
 
     /* the paper's discrete gradient and implicit midpoint */
     const char *cayley[] = {"paper-dg", "implicit-midpoint"};
@@ -124,7 +124,7 @@ int main(void)
         CHECK_MSG(e.agree, "%s", cayley[s]);
         CHECK_MSG(e.order == 2, "%s order %d", cayley[s], e.order);
         CHECK_MSG(matches(&e, sys, rot2, rot2p, NORD), "%s", cayley[s]);
-        CHECK(hl_errfield_classify(&F, hl_errors_field(&e, 3), sys, &err) == HL_OK);
+        CHECK(hl_errfield_classify(&F, hl_vfields_v(&e, 3), sys, &err) == HL_OK);
         CHECK(F.kind == HL_ERRFIELD_TIME_SHIFT && is_const(&F.lambda, -1, 2, ctx));
         CHECK(F.hamiltonian && F.have_h);
         hl_alg h;
@@ -133,26 +133,26 @@ int main(void)
         CHECK(hl_alg_equal(&h, &F.h, ctx));
         hl_alg_clear(&h, ctx);
         hl_errfield_clear(&F, sys);
-        hl_errors_clear(&e, sys);
+        hl_vfields_clear(&e, sys);
     }
 
     /* the exact rotation: no error at all */
     CHECK(run_errors(&e, sys, "exact-rotation", NORD) == HL_OK);
     CHECK(e.agree && e.leading == 0 && e.order == NORD);
     for (int k = 2; k <= NORD; k++)
-        CHECK(hl_alg_is_zero(&hl_errors_field(&e, k)[0], ctx) &&
-              hl_alg_is_zero(&hl_errors_field(&e, k)[1], ctx));
-    hl_errors_clear(&e, sys);
+        CHECK(hl_alg_is_zero(&hl_vfields_v(&e, k)[0], ctx) &&
+              hl_alg_is_zero(&hl_vfields_v(&e, k)[1], ctx));
+    hl_vfields_clear(&e, sys);
 
     /* RK4 */
     CHECK(run_errors(&e, sys, "rk4", NORD) == HL_OK);
     CHECK(e.agree && e.order == 4);
     CHECK(matches(&e, sys, "(1 - D^2/2 + D^4/24)*x + (D - D^3/6)*p",
                   "(1 - D^2/2 + D^4/24)*p - (D - D^3/6)*x", NORD));
-    CHECK(hl_errfield_classify(&F, hl_errors_field(&e, 5), sys, &err) == HL_OK);
+    CHECK(hl_errfield_classify(&F, hl_vfields_v(&e, 5), sys, &err) == HL_OK);
     CHECK(F.kind == HL_ERRFIELD_TIME_SHIFT && is_const(&F.lambda, -1, 1, ctx));
     hl_errfield_clear(&F, sys);
-    hl_errors_clear(&e, sys);
+    hl_vfields_clear(&e, sys);
 
     hl_system_free(sys);
     return HL_TEST_END();

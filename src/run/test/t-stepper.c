@@ -19,7 +19,7 @@ typedef struct osc_arg {
     int fail_at, nan_at;
 } osc_arg;
 
-static int rotation(double *z, double dt, void *arg, hl_error *err)
+static hl_status rotation(double *z, double dt, void *arg, hl_error *err)
 {
     (void)arg, (void)err;
     double x = z[0], p = z[1], c = cos(dt), s = sin(dt);
@@ -28,7 +28,7 @@ static int rotation(double *z, double dt, void *arg, hl_error *err)
     return 0;
 }
 
-static int euler(double *z, double dt, void *arg, hl_error *err)
+static hl_status euler(double *z, double dt, void *arg, hl_error *err)
 {
     osc_arg *a = arg;
     a->calls++;
