@@ -5,7 +5,8 @@
 #include <string.h>
 
 #include "base/buf.h"
-#include "expr/memo.h"
+#include "base/memo.h"
+#include "hamlie/expr.h"
 #include "hamlie/analysis.h"
 #include "hamlie/scheme.h"
 

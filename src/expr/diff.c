@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "expr/fold.h"
-#include "expr/memo.h"
+#include "base/memo.h"
 #include "expr/prec.h"
 
 typedef struct diff_walk {

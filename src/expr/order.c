@@ -9,7 +9,8 @@
 #include <flint/fmpq.h>
 
 #include "base/buf.h"
-#include "expr/memo.h"
+#include "base/memo.h"
+#include "hamlie/expr.h"
 
 /* A total order on expressions by their structure. */
 static int cmp_expr(const hl_expr *x, const hl_expr *y)

@@ -12,7 +12,7 @@
 #include <string.h>
 
 #include "expr/fold.h"
-#include "expr/memo.h"
+#include "base/memo.h"
 #include "base/buf.h"
 
 typedef struct taylor_walk {

@@ -11,7 +11,7 @@
 #include <mpfr.h>
 
 #include "base/buf.h"
-#include "expr/memo.h"
+#include "base/memo.h"
 #include "expr/prec.h"
 
 /* ---- post-order, without recursion ------------------------------------------ */

@@ -7,7 +7,8 @@
 #include <string.h>
 
 #include "base/buf.h"
-#include "expr/memo.h"
+#include "base/memo.h"
+#include "hamlie/expr.h"
 #include "scheme/scheme_impl.h"
 
 /* x exactly, as a rational (a double is a dyadic rational). */

@@ -1,9 +1,9 @@
-/* Node -> value map for DAG walks. */
+/* Pointer -> value map for DAG walks (memo.h). */
 #include <stdint.h>
 #include <stdlib.h>
 
 #include "base/buf.h"
-#include "expr/memo.h"
+#include "base/memo.h"
 
 void hl_memo_init(hl_memo *m)
 {
@@ -22,7 +22,7 @@ void hl_memo_clear(hl_memo *m)
     m->cap = m->count = 0;
 }
 
-static size_t slot_of(const hl_memo *m, const hl_expr *key)
+static size_t slot_of(const hl_memo *m, const void *key)
 {
     size_t j = (size_t)(((uintptr_t)key >> 4) * 0x9e3779b97f4a7c15ULL) & (m->cap - 1);
     while (m->keys[j] != NULL && m->keys[j] != key)
@@ -30,7 +30,7 @@ static size_t slot_of(const hl_memo *m, const hl_expr *key)
     return j;
 }
 
-hl_memo_val *hl_memo_get(const hl_memo *m, const hl_expr *key)
+hl_memo_val *hl_memo_get(const hl_memo *m, const void *key)
 {
     size_t j = slot_of(m, key);
     return m->keys[j] == key ? &m->vals[j] : NULL;
@@ -53,7 +53,7 @@ static void grow(hl_memo *m)
     hl_memo_clear(&old);
 }
 
-hl_memo_val *hl_memo_put(hl_memo *m, const hl_expr *key)
+hl_memo_val *hl_memo_put(hl_memo *m, const void *key)
 {
     if (2 * (m->count + 1) > m->cap)
         grow(m);
