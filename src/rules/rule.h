@@ -10,7 +10,7 @@
  *   - the C text and gccjit compilers (emit_c.c, jit_taylor.c): code;
  *   - the exact series of src/series (hl_alg coefficients) and the dual
  *     numbers of src/analysis/numeric.c: coefficients of their own kind.
- * So adding an operation means writing its rule in src/tape/rules/, one file
+ * So adding an operation means writing its rule in src/rules/, one file
  * per operation (heyoka's one-file-per-primitive pattern), and its entry in
  * the table of rules.c; no back end changes.
  *
@@ -29,13 +29,15 @@
  *     terms) in four lanes by position, lanes added as (l0 + l1) + (l2 + l3)
  *     (empty lanes left out), then the fresh terms (those reading a
  *     coefficient k) one by one, the term of operand x before that of y;
- *   - a weighted term is (w x[j]) y[k-j], with w = wa j + wb rounded as
- *     written; a fresh x[k] term is (w y[0]) x[k].
+ *   - a term is x[j] y[k-j]; a weighted term (w x[j]) y[k-j], with
+ *     w = wa j + wb rounded as written; a fresh x[k] term (w y[0]) x[k]
+ *     (x[k] y[0] unweighted); a square's pair term (2 x[j]) x[k-j], its
+ *     middle term x[k/2] x[k/2]; a sum of one term is that term.
  * The exact back ends (hl_alg, dual numbers) follow the same calls; order
  * does not change exact results.
  */
-#ifndef HAMLIE_TAPE_RULE_H
-#define HAMLIE_TAPE_RULE_H
+#ifndef HAMLIE_RULES_RULE_H
+#define HAMLIE_RULES_RULE_H
 
 #include "hamlie/tape.h"
 
@@ -93,6 +95,7 @@ typedef struct hl_em_ops {
     hl_ev (*mul)(hl_em *em, hl_ev a, hl_ev b);
     hl_ev (*neg)(hl_em *em, hl_ev a);
     hl_ev (*div)(hl_em *em, hl_ev a, hl_ev b);      /* a / b, one rounding */
+    hl_ev (*fma)(hl_em *em, hl_ev a, hl_ev b, hl_ev c); /* a b + c, one rounding */
     hl_ev (*call)(hl_em *em, hl_pfn f, hl_ev a, hl_ev b); /* b unused for one argument */
     /* The sum of a convolution's terms (order: see the top of this file);
      * *has = 0 and an unspecified value for an empty one. */
@@ -108,19 +111,26 @@ struct hl_em {
 };
 
 /* A rule: the point value and the Taylor recurrence of one operation.
- * taylor(em, k) stores coefficient k of D (and X, where the op has one) from
- * coefficients 0..k of A, B and 0..k-1 of D, X.  At k = 0 it must give the
- * same value as point (usually by calling it). */
+ * point(em) stores coefficient 0 of D (and of X where X is a second result,
+ * as cos beside sin) from coefficient 0 of A and B: point evaluation.
+ * taylor(em, k) stores coefficient k of D and X from coefficients 0..k of
+ * A, B and 0..k-1 of D, X; at k = 0 it gives point's values (it calls it)
+ * and fills what the recurrence keeps (an auxiliary series, reciprocals). */
 typedef struct hl_rule {
     const char *name;
-    int nargs; /* 1 or 2 (B a register or, for the K ops, a constant) */
-    int aux;   /* the op has an auxiliary series X */
-    hl_ev (*point)(hl_em *em, hl_ev a, hl_ev b);
+    void (*point)(hl_em *em);
     void (*taylor)(hl_em *em, int k);
 } hl_rule;
 
 /* The rule of op (rules.c: the table, one entry per hl_op). */
 const hl_rule *hl_rule_of(hl_op op);
+
+/* f / n for the Taylor-ODE step z[k+1] = f[k] / (k + 1), the same in every
+ * double back end: fma(f, hi, f lo) with hi + lo = 1/n to twice double
+ * precision (a product by 1/n alone has a rounding error of fixed sign that
+ * drifts the phase over many steps; a division is slow).  lo == 0 when 1/n
+ * is exact, and then the product f hi is f / n exactly. */
+void hl_rule_recip_split(double *hi, double *lo, int n);
 
 /* The order of a double convolution's terms (the bit-for-bit contract):
  * fills idx[0..n-1] with the j of the known terms in the order they are
@@ -137,9 +147,10 @@ void hl_conv_plan(const hl_conv *c, int *idx, int *lane, int *n, int fresh[2], i
 #define EV_MUL(E, a, b) ((E)->ops->mul((E), (a), (b)))
 #define EV_NEG(E, a) ((E)->ops->neg((E), (a)))
 #define EV_DIV(E, a, b) ((E)->ops->div((E), (a), (b)))
+#define EV_FMA(E, a, b, c) ((E)->ops->fma((E), (a), (b), (c)))
 #define EV_CALL(E, f, a) ((E)->ops->call((E), (f), (a), (a)))
 #define EV_CALL2(E, f, a, b) ((E)->ops->call((E), (f), (a), (b)))
 #define EV_KEEP(E, s, v) ((E)->ops->keep((E), (s), (v)))
 #define EV_KEPT(E, s) ((E)->ops->kept((E), (s)))
 
-#endif /* HAMLIE_TAPE_RULE_H */
+#endif /* HAMLIE_RULES_RULE_H */
