@@ -113,31 +113,16 @@ hl_status hl_figure_write(const hl_figure *fig, const char *path, const char *fo
     return st;
 }
 
-/* The formats of a list as plot.h reads it ("png,svg", spaces and commas
- * between, case-insensitive; each counted once): HL_EINVAL before anything
- * is written when a name is unknown or none is given. */
+/* By the one reader of format lists that hl_figure_write uses, so that the
+ * two cannot disagree on what a list means. */
 hl_status hl_figure_count_formats(int *n, const char *formats, hl_error *err)
 {
-    static const char *const known[3] = {"png", "svg", "pdf"};
-    int want[3] = {0, 0, 0};
+    int want[NFORMATS];
     *n = 0;
-    for (const char *p = formats != NULL ? formats : ""; *p;) {
-        while (*p == ' ' || *p == ',')
-            p++;
-        size_t len = strcspn(p, ", ");
-        if (len == 0)
-            break;
-        int k = 0;
-        while (k < 3 && !(len == 3 && strncasecmp(p, known[k], 3) == 0))
-            k++;
-        if (k == 3)
-            return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
-                                "unknown figure format '%.*s' (png, svg, pdf)", (int)len, p);
-        *n += !want[k];
-        want[k] = 1;
-        p += len;
-    }
-    return *n > 0 ? HL_OK : hl_error_set(err, HL_EINVAL, NULL, -1, 0, "no figure format given");
+    hl_status st = parse_formats(want, formats, err);
+    for (int k = 0; k < NFORMATS && st == HL_OK; k++)
+        *n += want[k];
+    return st;
 }
 
 hl_status hl_figure_mkdir(const char *dir, hl_error *err)
