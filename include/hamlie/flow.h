@@ -63,15 +63,14 @@ int hl_flow_order(const hl_flow *flow);
 long hl_flow_nsteps(const hl_flow *flow); /* steps taken since creation */
 
 /* Long runs: after HL_FLOW_NATIVE_PROBE steps, if the steps foreseen to
- * t_end (the time left over the mean step so far) exceed
- * HL_FLOW_NATIVE_STEPS, compile the tape's recursion to machine code
- * (hl_tape_native) and go on with it.  The decision counts steps, not
- * clocks, so a run is reproducible; the results change in the last bits at
- * the switch (the compiled sums are added in another order).  Compiling
- * costs 40-300 ms for the tapes of bench/taylor_flow.c and pays from about
- * 0.3-0.7 million steps; a failure to compile leaves the interpreter. */
+ * t_end (the time left over the mean step so far) are enough for the
+ * compilation to pay (tape.h: hl_tape_compile_pays, HL_COMPILE_TAYLOR),
+ * compile the tape's recursion to machine code (hl_tape_native) and go on
+ * with it.  The decision counts steps, not clocks, so a run is
+ * reproducible; the results change in the last bits at the switch (the
+ * compiled sums are added in another order).  A failure to compile leaves
+ * the interpreter. */
 #define HL_FLOW_NATIVE_PROBE 1000
-#define HL_FLOW_NATIVE_STEPS 1000000L
 void hl_flow_native_for(hl_flow *flow, double t_end);
 int hl_flow_native_active(const hl_flow *flow);
 

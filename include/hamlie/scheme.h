@@ -238,8 +238,9 @@ void hl_scheme_stepper_free(hl_scheme_stepper *st); /* NULL is a no-op */
 hl_status hl_scheme_step(hl_scheme_stepper *st, double *z, double D, double t, hl_error *err);
 
 /* Compile the stepper's tapes to machine code (tape.h: hl_tape_jit) when
- * a run of nsteps steps evaluates each of them more often than its
- * break-even (hl_tape_jit_breakeven); the steps stay the same bit for bit.
+ * a run of nsteps steps evaluates each of them often enough for the
+ * compilation to pay (tape.h: hl_tape_compile_pays, hl_newton_compile_pays);
+ * the steps stay the same bit for bit.
  * Best effort: without libgccjit, or if compiling fails, the interpreter
  * goes on.  Returns how many tapes are now machine code. */
 int hl_scheme_stepper_jit(hl_scheme_stepper *st, long nsteps);

@@ -154,8 +154,8 @@ hl_status hl_tape_taylor_ode_arb(arb_ptr z, int order, slong prec, hl_tape *tape
  * runs it) into a temporary shared object and loaded.  Both backends build
  * the same sums in the same order.  Costs one compilation (30-300 ms for
  * the tapes of bench/taylor_flow.c at order 19, growing with tape size
- * times order squared), for a run about twice as fast: it pays for runs of
- * hundreds of thousands of steps, not for short ones.  HL_EUNSUP if neither
+ * times order squared), for a run about twice as fast: it pays for long
+ * runs only (hl_tape_compile_pays, HL_COMPILE_TAYLOR).  HL_EUNSUP if neither
  * backend works (the interpreter keeps working); HL_EIO if the temporary
  * files cannot be written; HL_ELIMIT for a program that would be too large
  * (instructions * order^2 / 2 > 4e6 terms). */
@@ -170,8 +170,8 @@ void hl_tape_native_clear(hl_tape *tape); /* back to the interpreter */
  * instead of the interpreter (one branch; callers change nothing) with
  * bitwise the same results: the same IEEE operations in the same order,
  * the same libm functions, no contraction into FMA.  Evaluation gets 4-7x
- * faster; compiling costs about 25 ms + 0.1 ms per instruction (bench/
- * tape_jit.c), so it pays only for long runs: see hl_tape_jit_breakeven.
+ * faster; compiling costs some tens of milliseconds, so it pays only for
+ * long runs: see hl_tape_compile_pays.
  * Calling it again recompiles.  HL_EUNSUP if hamlie was built without
  * libgccjit or libgccjit fails (the tape keeps what it had; the
  * interpreter keeps working).  $HL_JIT_FLAGS adds compiler options
@@ -184,13 +184,29 @@ void hl_tape_jit_clear(hl_tape *tape);          /* back to the interpreter */
 int hl_tape_jit_active(const hl_tape *tape);    /* 1 if eval_d runs machine code */
 int hl_tape_jit_available(void);                /* 1 if built with libgccjit */
 
-/* The policy: the number of evaluations beyond which hl_tape_jit pays for
- * its compilation, estimated from the tape's length with this machine's
- * figures (compile 25 ms + 0.1 ms per instruction; each instruction saves
- * about 2.4 ns per evaluation): about 1e7 / instructions + 4e4, e.g. 370k
- * for a 30-instruction Störmer–Verlet step.  Callers compile when a run
- * will evaluate the tape more often than this (LONG_MAX if the tape has no
- * instructions or hamlie has no libgccjit). */
+/* ---- when compiling pays (one cost model, src/tape/cost.c) -----------------
+ * Each compiler costs a fixed time that a run repays by the uses it makes
+ * of the machine code.  These functions say, from the tape's length and
+ * figures measured by bench/tape_jit.c and bench/run_fixed.c, from how many
+ * uses on a compilation pays; the run, scheme and flow drivers ask them and
+ * keep no figures of their own.  The choice counts uses, not clocks, so a
+ * run makes the same choices everywhere. */
+typedef enum hl_compile_kind {
+    HL_COMPILE_EVAL,   /* hl_tape_jit; a use is one hl_tape_eval_d */
+    HL_COMPILE_LOOP,   /* hl_tape_jit; a use is one step of hl_tape_iterate[_watch]
+                        * that replaces a stepper's step (its call and copies too) */
+    HL_COMPILE_TAYLOR, /* hl_tape_native; a use is one Taylor step */
+} hl_compile_kind;
+
+/* The number of uses from which compiling pays; LONG_MAX where it never
+ * does (a tape without instructions; hamlie without libgccjit for
+ * hl_tape_jit).  E.g. about 370k evaluations for a 30-instruction
+ * Störmer–Verlet step. */
+long hl_tape_compile_breakeven(const hl_tape *tape, hl_compile_kind kind);
+/* 1 if a run that makes this many uses of the compiled tape should
+ * compile it (uses >= the break-even); 0 for a NULL tape. */
+int hl_tape_compile_pays(const hl_tape *tape, hl_compile_kind kind, long uses);
+/* hl_tape_compile_breakeven(tape, HL_COMPILE_EVAL), its former name. */
 long hl_tape_jit_breakeven(const hl_tape *tape);
 
 /* Iterate the tape as a map: n times, in[0..nout-1] = f(in), the inputs
@@ -267,13 +283,15 @@ hl_newton_status hl_newton_solve(double *U, int *iters, double *last, const doub
  * inlined (constants as immediates, the state in machine registers), the
  * LU factorization written out for this m; from then on hl_newton_solve
  * runs it, with the same results bit for bit (the same operations in the
- * same order).  Costs one compilation (60-120 ms for the implicit schemes
- * on one degree of freedom, 350 ms for gauss3 on two), for 20-60 ns a
- * solve: it pays for runs of a few million steps.  HL_EUNSUP without libgccjit or for m > 16 (the interpreter
- * goes on). */
+ * same order).  Costs one compilation (tenths of a second), for tens of
+ * nanoseconds a solve: it pays for long runs only (hl_newton_compile_pays).
+ * HL_EUNSUP without libgccjit or for m > 16 (the interpreter goes on). */
 hl_status hl_newton_jit(hl_newton *nw, hl_error *err);
 void hl_newton_jit_clear(hl_newton *nw);
 int hl_newton_jit_active(const hl_newton *nw);
+/* 1 if a run of this many solves should compile them (the cost model of
+ * hl_tape_compile_pays; 0 without libgccjit or for NULL). */
+int hl_newton_compile_pays(const hl_newton *nw, long solves);
 
 #ifdef __cplusplus
 }

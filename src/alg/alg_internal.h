@@ -76,6 +76,9 @@ int alg_atom_get2(int *var, alg_atom_kind kind, long q, const hl_alg *arg, const
                   hl_alg_ctx *ctx, hl_error *err);
 /* Does the polynomial p involve variable v? */
 int alg_poly_has_var(const fmpz_mpoly_t p, int v, const hl_alg_ctx *ctx);
+/* dep[v] = 1 for the base symbols v that a involves, also through its
+ * atoms; returns 1 if there is any. */
+int alg_depends_mask(unsigned char *dep, const hl_alg *a, const hl_alg_ctx *ctx);
 
 /* ---- ratfun.c ---- */
 /* Reduce a polynomial by the atom relations; returns nonzero if it changed. */
@@ -87,8 +90,5 @@ void alg_set_var(hl_alg *r, int v, hl_alg_ctx *ctx);                   /* r = va
 /* HL_ELIMIT if the coefficients of a^n would be too long to compute
  * exactly (about n log2 of the largest coefficient of a), else HL_OK. */
 int alg_check_pow_size(const hl_alg *a, unsigned long n, const hl_alg_ctx *ctx, hl_error *err);
-
-/* ---- zero.c ---- */
-int alg_depends_mask(unsigned char *dep, const hl_alg *a, const hl_alg_ctx *ctx);
 
 #endif

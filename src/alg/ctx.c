@@ -97,6 +97,33 @@ int alg_poly_has_var(const fmpz_mpoly_t p, int v, const hl_alg_ctx *ctx)
     return fmpz_mpoly_degree_si(p, v, ctx->mctx) > 0;
 }
 
+static void or_mask(unsigned char *dep, const fmpz_mpoly_t p, const hl_alg_ctx *ctx)
+{
+    if (fmpz_mpoly_is_fmpz(p, ctx->mctx))
+        return;
+    fmpz_mpoly_degrees_si(ctx->degs, p, ctx->mctx);
+    for (int v = 0; v < ctx->nbase; v++)
+        dep[v] |= ctx->degs[v] > 0;
+    for (int k = 0; k < ctx->natoms; k++)
+        if (ctx->degs[ctx->nbase + k] > 0)
+            for (int v = 0; v < ctx->nbase; v++)
+                dep[v] |= ctx->atoms[k].dep[v];
+}
+
+/* With the atom table: an atom depends on the base symbols of its
+ * arguments, which this mask collects when the atom is made. */
+int alg_depends_mask(unsigned char *dep, const hl_alg *a, const hl_alg_ctx *ctx)
+{
+    for (int v = 0; v < ctx->nbase; v++)
+        dep[v] = 0;
+    or_mask(dep, a->num, ctx);
+    or_mask(dep, a->den, ctx);
+    int any = 0;
+    for (int v = 0; v < ctx->nbase; v++)
+        any |= dep[v];
+    return any;
+}
+
 static int poly_has_atoms(const fmpz_mpoly_t p, const hl_alg_ctx *ctx)
 {
     if (fmpz_mpoly_is_fmpz(p, ctx->mctx))

@@ -239,31 +239,6 @@ int hl_alg_is_fmpq(const hl_alg *a, fmpq_t c, const hl_alg_ctx *ctx)
     return 1;
 }
 
-static void or_mask(unsigned char *dep, const fmpz_mpoly_t p, const hl_alg_ctx *ctx)
-{
-    if (fmpz_mpoly_is_fmpz(p, ctx->mctx))
-        return;
-    fmpz_mpoly_degrees_si(ctx->degs, p, ctx->mctx);
-    for (int v = 0; v < ctx->nbase; v++)
-        dep[v] |= ctx->degs[v] > 0;
-    for (int k = 0; k < ctx->natoms; k++)
-        if (ctx->degs[ctx->nbase + k] > 0)
-            for (int v = 0; v < ctx->nbase; v++)
-                dep[v] |= ctx->atoms[k].dep[v];
-}
-
-int alg_depends_mask(unsigned char *dep, const hl_alg *a, const hl_alg_ctx *ctx)
-{
-    for (int v = 0; v < ctx->nbase; v++)
-        dep[v] = 0;
-    or_mask(dep, a->num, ctx);
-    or_mask(dep, a->den, ctx);
-    int any = 0;
-    for (int v = 0; v < ctx->nbase; v++)
-        any |= dep[v];
-    return any;
-}
-
 int hl_alg_depends_on(const hl_alg *a, int var, const hl_alg_ctx *ctx)
 {
     if (var < 0 || var >= ctx->nbase)

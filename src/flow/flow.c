@@ -1,5 +1,6 @@
 /* The Taylor integrator in double (see hamlie/flow.h). */
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -103,7 +104,9 @@ static void native_decide(hl_flow *fl, double t)
     double mean = fabs(t - fl->t_probe) / (double)done;
     double left = fabs(fl->native_end - t) / mean;
     fl->native_done = 1;
-    if (left > (double)HL_FLOW_NATIVE_STEPS && hl_tape_native(fl->f, fl->p, NULL) == HL_OK)
+    long foreseen = left < (double)LONG_MAX ? (long)left : LONG_MAX;
+    if (hl_tape_compile_pays(fl->f, HL_COMPILE_TAYLOR, foreseen) &&
+        hl_tape_native(fl->f, fl->p, NULL) == HL_OK)
         fl->native_done = 2;
 }
 long hl_flow_nsteps(const hl_flow *fl) { return fl->nsteps; }

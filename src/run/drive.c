@@ -10,11 +10,6 @@
 /* Reference times go to the flow in chunks, so memory stays bounded. */
 #define CHUNK 65536
 
-/* Steps from which H and the observers are compiled to machine code (a
- * compilation costs 10-20 ms; the interpreter about 30 ns per evaluation
- * more for a small tape). */
-#define JIT_MIN_STEPS 200000
-
 typedef struct drive {
     hl_run *r;
     double dt;
@@ -190,16 +185,6 @@ static int fixed_ref(drive *d, hl_error *err)
  * a value that is not finite the loop stops before that step and the
  * scheme's stepper takes over, so failures read as on the slow path. */
 
-/* Steps from which the fused loop pays for its compilation: compiling
- * costs about 25 ms + 0.1 ms per instruction (hl_tape_jit), and each step
- * saves the stepper's call, copies and checks (about 50 ns, bench/
- * run_fixed.c) besides the interpreter's 2.4 ns per instruction. */
-static long fused_breakeven(const hl_tape *t)
-{
-    double n = hl_tape_nops(t);
-    return (long)((25e6 + 1e5 * n) / (50 + 2.4 * n));
-}
-
 /* The fused tape, compiled, if this run should use it. */
 static int fused_ready(hl_run *r, long nsteps)
 {
@@ -221,7 +206,7 @@ static int fused_ready(hl_run *r, long nsteps)
     }
     if (hl_tape_jit_active(r->fused))
         return 1;
-    if (nsteps < fused_breakeven(r->fused))
+    if (!hl_tape_compile_pays(r->fused, HL_COMPILE_LOOP, nsteps))
         return 0;
     if (hl_tape_jit(r->fused, NULL) != HL_OK) {
         hl_tape_free(r->fused);
@@ -310,8 +295,8 @@ hl_status hl_run_fixed(hl_run *r, const double *z0, double dt, double t, long ev
      * unless fused: for long runs machine code (same results bit for bit)
      * pays for its compilation */
     long evals = fused ? (d.fn != NULL ? d.n / d.every : 1) : d.n;
-    if (r->jit && evals >= JIT_MIN_STEPS && !hl_tape_jit_active(r->obs) &&
-        hl_tape_jit_available())
+    if (r->jit && !hl_tape_jit_active(r->obs) &&
+        hl_tape_compile_pays(r->obs, HL_COMPILE_EVAL, evals))
         hl_tape_jit(r->obs, NULL); /* on failure the interpreter goes on */
     if (r->jit && r->stepper != NULL && !fused)
         hl_scheme_stepper_jit(r->stepper, d.n);

@@ -67,18 +67,10 @@ static int jit_if_it_pays(hl_tape *t, long evaluations)
 {
     if (t == NULL)
         return 0;
-    if (!hl_tape_jit_active(t) && evaluations >= hl_tape_jit_breakeven(t))
+    if (!hl_tape_jit_active(t) && hl_tape_compile_pays(t, HL_COMPILE_EVAL, evaluations))
         hl_tape_jit(t, NULL); /* on failure the interpreter goes on */
     return hl_tape_jit_active(t);
 }
-
-/* Steps from which the compiled Newton solve pays for its compilation:
- * 80-150 ms for the implicit schemes on one degree of freedom (with the
- * tape of the next point), 400 ms for gauss3 on two.  In a run it saves
- * the interpreter and the calls, about 80 ns a step: the implicit midpoint
- * rule's 10^6 pendulum steps take 227 ms with the compilation, 223 ms
- * without (bench/run_fixed.c). */
-#define NEWTON_JIT_MIN_STEPS 1000000
 
 int hl_scheme_stepper_jit(hl_scheme_stepper *st, long nsteps)
 {
@@ -91,7 +83,7 @@ int hl_scheme_stepper_jit(hl_scheme_stepper *st, long nsteps)
      * not evaluated per step.  The fallback (Gauss rules, for the long
      * steps a Taylor rule cannot take) is compiled only if it takes over
      * (fallback_step). */
-    if (!hl_newton_jit_active(st->nw) && nsteps >= NEWTON_JIT_MIN_STEPS)
+    if (!hl_newton_jit_active(st->nw) && hl_newton_compile_pays(st->nw, nsteps))
         hl_newton_jit(st->nw, NULL); /* on failure the interpreter goes on */
     if (hl_newton_jit_active(st->nw))
         return 4; /* start, F, FJ and the next point, in one function */

@@ -363,10 +363,11 @@ static void test_arb_run(void)
     hl_tape_free(t);
 }
 
-/* hl_flow_native_for: a run that foresees more than HL_FLOW_NATIVE_STEPS
- * steps compiles its recursion after the probe (and stays on the
- * oscillator's closed form); one that does not, does not.  The run is cut
- * short: the decision needs only the probe. */
+/* hl_flow_native_for: a run that foresees more steps than the break-even
+ * (hl_tape_compile_breakeven, HL_COMPILE_TAYLOR) compiles its recursion
+ * after the probe (and stays on the oscillator's closed form); one that
+ * does not, does not.  The run is cut short: the decision needs only the
+ * probe. */
 static void test_native_for(void)
 {
     hl_error err;

@@ -1,0 +1,99 @@
+/* When compiling pays: the one cost model behind every choice to compile
+ * (hamlie/tape.h: hl_tape_compile_pays).  The drivers (run, scheme, flow)
+ * ask it and keep no figures of their own.
+ *
+ * A compilation pays when the time it saves over the run is more than the
+ * time it takes: uses * saved_per_use >= compile_time.  The figures are
+ * those of bench/tape_jit.c and bench/run_fixed.c (gcc 12, libgccjit at
+ * -O2, x86-64, an otherwise idle machine); they are rough (a factor of 2
+ * either way between machines), and the choices they make only move time:
+ * compiled and interpreted runs give the same results bit for bit
+ * (hl_tape_jit, hl_newton_jit), or the same up to the last bits at one
+ * known step (hl_tape_native).
+ *
+ * NOTE: the choice counts uses (evaluations, steps, solves), never clocks,
+ * so that a run makes the same choices on every machine and is
+ * reproducible. */
+#include <limits.h>
+
+#include "tape/tape_impl.h"
+
+/* hl_tape_jit: GCC's fixed cost (driver, passes, assembler and loader,
+ * in process) and its cost per instruction of straight-line code
+ * (bench/tape_jit.c, "compile time against tape length": linear in the
+ * tape's length from 50 to 3400 instructions). */
+#define JIT_COMPILE_NS 25e6
+#define JIT_COMPILE_NS_PER_OP 1e5
+
+/* An evaluation in machine code saves the interpreter's dispatch and its
+ * load and store through the register file: about 2.8 ns against 0.4 ns
+ * per instruction (bench/tape_jit.c, from 9 to 3400 instructions). */
+#define JIT_SAVED_NS_PER_OP 2.4
+
+/* A step of hl_tape_iterate's compiled loop also saves what a stepper
+ * does around the evaluation: its call, the copies of the state and the
+ * finiteness checks (bench/run_fixed.c, explicit schemes against the loop
+ * written by hand). */
+#define LOOP_SAVED_NS_PER_STEP 50.0
+
+/* hl_newton_jit compiles three or four tapes and an LU factorization
+ * written out: 80-150 ms for the implicit schemes on one degree of freedom,
+ * about 400 ms for gauss3 on two, to save about 80 ns a solve (the
+ * interpreter and the calls between the tapes).  A million solves is
+ * where the smallest of them breaks even (bench/run_fixed.c: the implicit
+ * midpoint rule's 10^6 pendulum steps about as fast compiled as not); the
+ * larger ones save more per solve as well, so one threshold serves. */
+#define NEWTON_BREAKEVEN_SOLVES 1000000L
+
+/* hl_tape_native's recursion: 40-300 ms for the tapes of
+ * bench/taylor_flow.c at order 19, for a step about twice as fast; both
+ * grow with the tape's length times the order squared, so the break-even
+ * hardly depends on the tape: 0.3-0.7 million steps.  The steps of an
+ * adaptive run are foreseen from a probe (hl_flow_native_for), not known,
+ * hence the margin. */
+#define TAYLOR_BREAKEVEN_STEPS 1000000L
+
+/* compile_ns / saved_ns, or LONG_MAX if nothing is saved or the quotient
+ * does not fit. */
+static long uses_to_repay(double compile_ns, double saved_ns)
+{
+    if (saved_ns <= 0)
+        return LONG_MAX;
+    double uses = compile_ns / saved_ns;
+    return uses >= (double)LONG_MAX ? LONG_MAX : (long)uses;
+}
+
+long hl_tape_compile_breakeven(const hl_tape *t, hl_compile_kind kind)
+{
+    double ops = t->ncode;
+    switch (kind) {
+    case HL_COMPILE_EVAL:
+    case HL_COMPILE_LOOP:
+        if (!hl_tape_jit_available() || t->ncode == 0)
+            return LONG_MAX;
+        return uses_to_repay(JIT_COMPILE_NS + JIT_COMPILE_NS_PER_OP * ops,
+                             JIT_SAVED_NS_PER_OP * ops +
+                                 (kind == HL_COMPILE_LOOP ? LOOP_SAVED_NS_PER_STEP : 0));
+    case HL_COMPILE_TAYLOR:
+        return t->ncode == 0 ? LONG_MAX : TAYLOR_BREAKEVEN_STEPS;
+    }
+    return LONG_MAX;
+}
+
+int hl_tape_compile_pays(const hl_tape *t, hl_compile_kind kind, long uses)
+{
+    if (t == NULL)
+        return 0;
+    long breakeven = hl_tape_compile_breakeven(t, kind);
+    return breakeven < LONG_MAX && uses >= breakeven;
+}
+
+int hl_newton_compile_pays(const hl_newton *nw, long solves)
+{
+    return nw != NULL && hl_tape_jit_available() && solves >= NEWTON_BREAKEVEN_SOLVES;
+}
+
+long hl_tape_jit_breakeven(const hl_tape *t)
+{
+    return hl_tape_compile_breakeven(t, HL_COMPILE_EVAL);
+}

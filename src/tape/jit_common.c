@@ -1,0 +1,192 @@
+/* The libgccjit plumbing that the three compilers share (point evaluation
+ * and iteration in jit_eval.c, the Newton solve in jit_newton.c, the
+ * Taylor-ODE recursion in jit.c): a context with the options that keep
+ * compiled results bitwise those of the interpreter, one compilation that
+ * leaves the caller's signal handlers in place, the libm imports.
+ *
+ * Bitwise: each instruction is the same IEEE operation on the same
+ * operands in the same order; the library functions are the same libm
+ * symbols, called as opaque imports so that GCC cannot rewrite them
+ * (pow(x, 2) -> x*x is not exact for glibc's pow); contraction into FMA is
+ * switched off (-ffp-contract=off).  sqrt is GCC's builtin (sqrtsd,
+ * correctly rounded like libm's).  When compiling pays: cost.c. */
+#include <pthread.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/buf.h"
+#include "tape/jit_impl.h"
+
+#ifdef HAMLIE_HAVE_GCCJIT
+
+/* The libm functions the ops call, by op; NULL where the op is arithmetic. */
+/* The libm functions the ops call, by op; NULL where the op is arithmetic. */
+static const char *const libm_name[HL_OP_COUNT] = {
+    [HL_OP_POWK] = "pow",      [HL_OP_EXP] = "exp",       [HL_OP_LOG] = "log",
+    [HL_OP_SINCOS] = "sincos", [HL_OP_SINHCOSH] = "sinh", [HL_OP_TAN] = "tan",
+    [HL_OP_TANH] = "tanh",     [HL_OP_ATAN] = "atan",     [HL_OP_ASIN] = "asin",
+    [HL_OP_ACOS] = "acos",     [HL_OP_ATAN2] = "atan2",
+};
+
+gcc_jit_function *hl_jit_import1(jit *J, const char *name)
+{
+    gcc_jit_param *x = gcc_jit_context_new_param(J->c, NULL, J->dbl, "x");
+    return gcc_jit_context_new_function(J->c, NULL, GCC_JIT_FUNCTION_IMPORTED, J->dbl, name, 1, &x,
+                                        0);
+}
+
+gcc_jit_function *hl_jit_import_lib(jit *J, int op)
+{
+    if (J->lib[op] != NULL)
+        return J->lib[op];
+    if (op == HL_OP_POWK || op == HL_OP_ATAN2) { /* pow(x, y), atan2(y, x) */
+        gcc_jit_param *p[2] = {gcc_jit_context_new_param(J->c, NULL, J->dbl, "u"),
+                               gcc_jit_context_new_param(J->c, NULL, J->dbl, "v")};
+        J->lib[op] = gcc_jit_context_new_function(J->c, NULL, GCC_JIT_FUNCTION_IMPORTED, J->dbl,
+                                                  libm_name[op], 2, p, 0);
+    } else if (op == HL_OP_SINCOS) {
+        gcc_jit_param *p[3] = {gcc_jit_context_new_param(J->c, NULL, J->dbl, "x"),
+                               gcc_jit_context_new_param(J->c, NULL, J->dblp, "s"),
+                               gcc_jit_context_new_param(J->c, NULL, J->dblp, "c")};
+        J->lib[op] = gcc_jit_context_new_function(J->c, NULL, GCC_JIT_FUNCTION_IMPORTED,
+                                                  gcc_jit_context_get_type(J->c, GCC_JIT_TYPE_VOID),
+                                                  "sincos", 3, p, 0);
+    } else
+        J->lib[op] = hl_jit_import1(J, libm_name[op]);
+    return J->lib[op];
+}
+
+/* NOTE: libgccjit runs GCC's driver in process, and the driver installs its
+ * own handlers for SIGINT, SIGHUP, SIGTERM and SIGPIPE (GCC's fatal_signal,
+ * which kills the process) and SIGCHLD, and leaves them there: a caller's
+ * Ctrl-C handler (hamlie run stops cleanly on it) was gone after the first
+ * compilation.  They are put back after each compilation; the signals that
+ * stop a job are held meanwhile and reach the caller's handler after. */
+static gcc_jit_result *compile(gcc_jit_context *c)
+{
+    static const int sigs[] = {SIGINT, SIGHUP, SIGTERM, SIGPIPE, SIGCHLD};
+    enum { NSIGS = sizeof sigs / sizeof sigs[0] };
+    struct sigaction saved[NSIGS];
+    sigset_t hold, prev;
+    sigemptyset(&hold);
+    sigaddset(&hold, SIGINT);
+    sigaddset(&hold, SIGHUP);
+    sigaddset(&hold, SIGTERM);
+    for (int i = 0; i < NSIGS; i++)
+        sigaction(sigs[i], NULL, &saved[i]);
+    pthread_sigmask(SIG_BLOCK, &hold, &prev);
+    gcc_jit_result *res = gcc_jit_context_compile(c);
+    for (int i = 0; i < NSIGS; i++)
+        sigaction(sigs[i], &saved[i], NULL);
+    pthread_sigmask(SIG_SETMASK, &prev, NULL);
+    return res;
+}
+
+/* Extra options from $HL_JIT_FLAGS (space-separated), for experiments such
+ * as -march=native (which may contract into FMA and so change results). */
+static void add_env_flags(gcc_jit_context *c)
+{
+    const char *s = getenv("HL_JIT_FLAGS");
+    if (s == NULL)
+        return;
+    char *copy = hl_xmalloc(strlen(s) + 1), *save = NULL;
+    strcpy(copy, s);
+    for (char *w = strtok_r(copy, " \t", &save); w != NULL; w = strtok_r(NULL, " \t", &save))
+        gcc_jit_context_add_command_line_option(c, w); /* copies w */
+    free(copy);
+}
+
+/* The vector instructions of the machine that runs the code (libgccjit
+ * does not understand -march=native).  Contraction into FMA stays off, so
+ * the results are those of plain SSE2 code; the wider registers let GCC
+ * pair the recurrences' independent products, which bench/taylor_flow.c
+ * shows on the longer recursions (Kepler's). */
+static int add_host_isa(gcc_jit_context *c)
+{
+#if defined(__x86_64__) && defined(__GNUC__)
+    __builtin_cpu_init();
+    int v3 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
+             __builtin_cpu_supports("bmi2");
+    int v4 = v3 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+             __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
+    if (v4)
+        gcc_jit_context_add_command_line_option(c, "-march=x86-64-v4");
+    else if (v3)
+        gcc_jit_context_add_command_line_option(c, "-march=x86-64-v3");
+    return v3; /* FMA instructions */
+#else
+    (void)c;
+    return 0;
+#endif
+}
+
+hl_status hl_jit_context_new(gcc_jit_context **c, int opt, int *fma, hl_error *err)
+{
+    *c = gcc_jit_context_acquire();
+    if (*c == NULL)
+        return hl_error_set(err, HL_EUNSUP, NULL, -1, 0, "libgccjit cannot start");
+    gcc_jit_context_set_int_option(*c, GCC_JIT_INT_OPTION_OPTIMIZATION_LEVEL, opt);
+    gcc_jit_context_set_bool_option(*c, GCC_JIT_BOOL_OPTION_DEBUGINFO, 0);
+    /* its diagnostics are not ours to print; the first comes back in err */
+    gcc_jit_context_set_bool_print_errors_to_stderr(*c, 0);
+    gcc_jit_context_add_command_line_option(*c, "-ffp-contract=off");
+    if (fma != NULL)
+        *fma = add_host_isa(*c);
+    add_env_flags(*c); /* last, so that the caller's options win */
+    return HL_OK;
+}
+
+void hl_jit_init(jit *J, gcc_jit_context *c, const hl_tape *t)
+{
+    J->c = c;
+    J->t = t;
+    J->dbl = gcc_jit_context_get_type(c, GCC_JIT_TYPE_DOUBLE);
+    J->dblp = gcc_jit_type_get_pointer(J->dbl);
+    J->sqrt = gcc_jit_context_get_builtin_function(c, "__builtin_sqrt");
+}
+
+hl_status hl_jit_compile(gcc_jit_result **res, void **code, gcc_jit_context *c, const char *entry,
+                         const char *what, hl_error *err)
+{
+    *res = compile(c);
+    *code = *res != NULL ? gcc_jit_result_get_code(*res, entry) : NULL;
+    hl_status status = HL_OK;
+    if (*code == NULL) {
+        const char *why = gcc_jit_context_get_first_error(c);
+        status = hl_error_set(err, HL_EUNSUP, NULL, -1, 0, "libgccjit failed on %s%s%s", what,
+                              why ? ": " : "", why ? why : "");
+        if (*res != NULL)
+            gcc_jit_result_release(*res);
+        *res = NULL;
+    }
+    /* the result owns the code; the context is no longer needed */
+    gcc_jit_context_release(c);
+    return status;
+}
+
+int hl_tape_jit_available(void)
+{
+    return 1;
+}
+
+#if defined(__SANITIZE_ADDRESS__)
+/* libgccjit keeps some 5-10 kB of compiler state per compilation that
+ * gcc_jit_context_release and gcc_jit_result_release do not free; in
+ * sanitizer builds LeakSanitizer would fail every program that compiles a
+ * tape.  Only allocations made inside libgccjit are suppressed. */
+const char *__lsan_default_suppressions(void);
+const char *__lsan_default_suppressions(void)
+{
+    return "leak:libgccjit.so\nleak:libfontconfig.so\n";
+}
+#endif
+
+#else /* no libgccjit: every compiler reports HL_EUNSUP, the interpreter runs */
+
+int hl_tape_jit_available(void)
+{
+    return 0;
+}
+
+#endif

@@ -1,0 +1,531 @@
+/* Machine code for a tape's double evaluation, through libgccjit (opt-in;
+ * see hl_tape_jit in hamlie/tape.h).
+ *
+ * The interpreter pays a dispatch, and a load and a store through the
+ * register file, for every instruction.  The tape is a straight-line
+ * program, so it translates one to one into a C-like function body: one
+ * local per register, constants as immediates, libm calls where the
+ * interpreter calls libm.  GCC then keeps the values in machine registers
+ * and schedules the arithmetic.  The results are bitwise the interpreter's
+ * (jit_common.c says how).
+ *
+ * Built here: hl_jit_eval (hl_tape_eval_d), hl_jit_iter and hl_jit_watch
+ * (hl_tape_iterate[_watch]: the map iterated in one loop, so that a
+ * fixed-step run pays no call and no copy per step), and the emitter of
+ * one instruction that jit_newton.c also uses.  Without libgccjit
+ * hl_tape_jit reports HL_EUNSUP and hl_tape_iterate runs the interpreter.
+ * When compiling pays: cost.c. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/buf.h"
+#include "tape/jit_impl.h"
+#include "tape/tape_impl.h"
+
+#ifdef HAMLIE_HAVE_GCCJIT
+
+unsigned char *hl_jit_registers_read(const hl_tape *t)
+{
+    unsigned char *r = hl_xcalloc((size_t)t->nregs + 1, 1);
+    for (int k = 0; k < t->ncode; k++) {
+        const hl_instr *i = &t->code[k];
+        if (i->a >= 0)
+            r[i->a] = 1;
+        if (i->b >= 0)
+            r[i->b] = 1;
+    }
+    for (int j = 0; j < t->nout; j++)
+        r[t->outreg[j]] = 1;
+    return r;
+}
+
+gcc_jit_rvalue *hl_jit_val(jit *J, int r)
+{
+    if (J->t->isconst[r])
+        return gcc_jit_context_new_rvalue_from_double(J->c, J->dbl, J->t->rd[r]);
+    return gcc_jit_lvalue_as_rvalue(J->loc[r]);
+}
+
+static gcc_jit_rvalue *binop(jit *J, enum gcc_jit_binary_op op, int a, int b)
+{
+    return gcc_jit_context_new_binary_op(J->c, NULL, op, J->dbl, hl_jit_val(J, a),
+                                         hl_jit_val(J, b));
+}
+
+static gcc_jit_rvalue *call1(jit *J, gcc_jit_function *f, int a)
+{
+    gcc_jit_rvalue *x = hl_jit_val(J, a);
+    return gcc_jit_context_new_call(J->c, NULL, f, 1, &x);
+}
+
+void hl_jit_assign(jit *J, int d, gcc_jit_rvalue *v)
+{
+    gcc_jit_block_add_assignment(J->blk, NULL, J->loc[d], v);
+}
+
+void hl_jit_emit(jit *J, const hl_instr *i)
+{
+    gcc_jit_rvalue *v = NULL;
+    switch ((hl_op)i->op) {
+    case HL_OP_NEG:
+        v = gcc_jit_context_new_unary_op(J->c, NULL, GCC_JIT_UNARY_OP_MINUS, J->dbl,
+                                         hl_jit_val(J, i->a));
+        break;
+    case HL_OP_ADD:
+    case HL_OP_ADDK:
+        v = binop(J, GCC_JIT_BINARY_OP_PLUS, i->a, i->b);
+        break;
+    case HL_OP_SUB:
+    case HL_OP_SUBK:
+        v = binop(J, GCC_JIT_BINARY_OP_MINUS, i->a, i->b);
+        break;
+    case HL_OP_KSUB:
+        v = binop(J, GCC_JIT_BINARY_OP_MINUS, i->b, i->a);
+        break;
+    case HL_OP_MUL:
+    case HL_OP_MULK:
+        v = binop(J, GCC_JIT_BINARY_OP_MULT, i->a, i->b);
+        break;
+    case HL_OP_DIV:
+    case HL_OP_DIVK:
+        v = binop(J, GCC_JIT_BINARY_OP_DIVIDE, i->a, i->b);
+        break;
+    case HL_OP_KDIV:
+        v = binop(J, GCC_JIT_BINARY_OP_DIVIDE, i->b, i->a);
+        break;
+    case HL_OP_SQR:
+        v = binop(J, GCC_JIT_BINARY_OP_MULT, i->a, i->a);
+        break;
+    case HL_OP_POWK:
+    case HL_OP_ATAN2: {
+        gcc_jit_rvalue *args[2] = {hl_jit_val(J, i->a), hl_jit_val(J, i->b)};
+        v = gcc_jit_context_new_call(J->c, NULL, hl_jit_import_lib(J, i->op), 2, args);
+        break;
+    }
+    case HL_OP_SQRT:
+        v = call1(J, J->sqrt, i->a);
+        break;
+    case HL_OP_SINCOS: {
+        /* sin or cos alone when the other is not read (the compiler makes
+         * every sin a SINCOS, for Taylor mode): glibc's sincos computes
+         * each as sin and cos do, so the bits are the same */
+        if (!J->read[i->x] || !J->read[i->d] || J->split_sincos) {
+            if (J->sin == NULL)
+                J->sin = hl_jit_import1(J, "sin"), J->cos = hl_jit_import1(J, "cos");
+            if (J->read[i->d])
+                hl_jit_assign(J, i->d, call1(J, J->sin, i->a));
+            if (J->read[i->x])
+                hl_jit_assign(J, i->x, call1(J, J->cos, i->a));
+            return;
+        }
+        gcc_jit_rvalue *args[3] = {hl_jit_val(J, i->a),
+                                   gcc_jit_lvalue_get_address(J->loc[i->d], NULL),
+                                   gcc_jit_lvalue_get_address(J->loc[i->x], NULL)};
+        gcc_jit_block_add_eval(
+            J->blk, NULL,
+            gcc_jit_context_new_call(J->c, NULL, hl_jit_import_lib(J, i->op), 3, args));
+        return;
+    }
+    case HL_OP_SINHCOSH:
+        hl_jit_assign(J, i->d, call1(J, hl_jit_import_lib(J, i->op), i->a));
+        if (J->cosh == NULL)
+            J->cosh = hl_jit_import1(J, "cosh");
+        v = call1(J, J->cosh, i->a);
+        hl_jit_assign(J, i->x, v);
+        return;
+    case HL_OP_EXP:
+    case HL_OP_LOG:
+    case HL_OP_TAN:
+    case HL_OP_TANH:
+    case HL_OP_ATAN:
+    case HL_OP_ASIN:
+    case HL_OP_ACOS:
+        v = call1(J, hl_jit_import_lib(J, i->op), i->a);
+        break;
+    case HL_OP_COUNT:
+        return;
+    }
+    hl_jit_assign(J, i->d, v);
+}
+
+void hl_jit_new_locals(jit *J, const char *prefix)
+{
+    const hl_tape *t = J->t;
+    for (int r = 0; r < t->nregs; r++) {
+        if (t->isconst[r])
+            continue;
+        char name[32];
+        snprintf(name, sizeof name, "%s%d", prefix, r);
+        J->loc[r] = gcc_jit_function_new_local(J->fun, NULL, J->dbl, name);
+    }
+}
+
+static gcc_jit_lvalue *elem(jit *J, gcc_jit_rvalue *base, int i)
+{
+    gcc_jit_type *ity = gcc_jit_context_get_type(J->c, GCC_JIT_TYPE_INT);
+    return gcc_jit_context_new_array_access(J->c, NULL, base,
+                                            gcc_jit_context_new_rvalue_from_int(J->c, ity, i));
+}
+
+/* void hl_jit_eval(const double *in, double *out): the tape once. */
+static void build_eval(jit *J)
+{
+    const hl_tape *t = J->t;
+    gcc_jit_context *c = J->c;
+    gcc_jit_type *cdblp = gcc_jit_type_get_pointer(gcc_jit_type_get_const(J->dbl));
+    gcc_jit_param *prm[2] = {gcc_jit_context_new_param(c, NULL, cdblp, "in"),
+                             gcc_jit_context_new_param(c, NULL, J->dblp, "out")};
+    J->fun = gcc_jit_context_new_function(c, NULL, GCC_JIT_FUNCTION_EXPORTED,
+                                          gcc_jit_context_get_type(c, GCC_JIT_TYPE_VOID),
+                                          "hl_jit_eval", 2, prm, 0);
+    J->blk = gcc_jit_function_new_block(J->fun, "body");
+    hl_jit_new_locals(J, "r");
+    gcc_jit_rvalue *in = gcc_jit_param_as_rvalue(prm[0]), *out = gcc_jit_param_as_rvalue(prm[1]);
+    /* all inputs are read before any output is written: in and out may alias */
+    for (int r = 0; r < t->nin; r++)
+        hl_jit_assign(J, r, gcc_jit_lvalue_as_rvalue(elem(J, in, r)));
+    for (int k = 0; k < t->ncode; k++)
+        hl_jit_emit(J, &t->code[k]);
+    for (int j = 0; j < t->nout; j++)
+        gcc_jit_block_add_assignment(J->blk, NULL, elem(J, out, j), hl_jit_val(J, t->outreg[j]));
+    gcc_jit_block_end_with_void_return(J->blk, NULL);
+}
+
+/* Loop-carried calls.  An instruction on an input register that is fed
+ * back (sin q) may have a twin, the same op on the register fed back to
+ * that input (sin Q): from the second step on, its values are the twin's of
+ * the step before, the same bits, and the call is not made again
+ * (Stormer-Verlet's two kicks a step, Yoshida's shared forces). */
+typedef struct carry {
+    int i, twin;           /* instruction indices in t->code */
+    gcc_jit_lvalue *d, *x; /* the carried values (x: the aux, e.g. cos) */
+} carry;
+
+static int carried_op(int op)
+{
+    return op == HL_OP_POWK || (op >= HL_OP_SQRT && op <= HL_OP_ACOS);
+}
+
+/* The instructions whose values a loop can carry; nmap inputs fed back.
+ * Marks the twins' registers read where the carried ones are. */
+static carry *find_carries(jit *J, int nmap, int *n)
+{
+    const hl_tape *t = J->t;
+    carry *cv = hl_xmalloc((size_t)(t->ncode + 1) * sizeof *cv);
+    *n = 0;
+    for (int k = 0; k < t->ncode; k++) {
+        const hl_instr *i = &t->code[k];
+        if (!carried_op(i->op) || i->a < 0 || i->a >= nmap || t->outreg[i->a] == i->a)
+            continue;
+        for (int k2 = 0; k2 < t->ncode; k2++) {
+            const hl_instr *w = &t->code[k2];
+            if (k2 == k || w->op != i->op || w->b != i->b || w->a != t->outreg[i->a])
+                continue;
+            J->read[w->d] |= J->read[i->d];
+            if (w->x >= 0)
+                J->read[w->x] |= J->read[i->x];
+            cv[(*n)++] = (carry){k, k2, NULL, NULL};
+            break;
+        }
+    }
+    return cv;
+}
+
+static int carried(const carry *cv, int n, int k)
+{
+    for (int j = 0; j < n; j++)
+        if (cv[j].i == k)
+            return j;
+    return -1;
+}
+
+/* The carried values from the step's start (entry), and into the body. */
+static void carry_start(jit *J, carry *cv, int n)
+{
+    for (int j = 0; j < n; j++) {
+        const hl_instr *i = &J->t->code[cv[j].i];
+        hl_jit_emit(J, i);
+        char name[32];
+        snprintf(name, sizeof name, "cd%d", j);
+        cv[j].d = gcc_jit_function_new_local(J->fun, NULL, J->dbl, name);
+        gcc_jit_block_add_assignment(J->blk, NULL, cv[j].d,
+                                     J->read[i->d] ? hl_jit_val(J, i->d)
+                                                   : gcc_jit_context_zero(J->c, J->dbl));
+        if (i->x >= 0) {
+            snprintf(name, sizeof name, "cx%d", j);
+            cv[j].x = gcc_jit_function_new_local(J->fun, NULL, J->dbl, name);
+            gcc_jit_block_add_assignment(J->blk, NULL, cv[j].x,
+                                         J->read[i->x] ? hl_jit_val(J, i->x)
+                                                       : gcc_jit_context_zero(J->c, J->dbl));
+        }
+    }
+}
+
+static void carry_use(jit *J, const carry *c)
+{
+    const hl_instr *i = &J->t->code[c->i];
+    if (J->read[i->d])
+        hl_jit_assign(J, i->d, gcc_jit_lvalue_as_rvalue(c->d));
+    if (i->x >= 0 && J->read[i->x])
+        hl_jit_assign(J, i->x, gcc_jit_lvalue_as_rvalue(c->x));
+}
+
+/* At the end of a step kept: the twins' values for the next. */
+static void carry_next(jit *J, gcc_jit_block *blk, const carry *cv, int n)
+{
+    for (int j = 0; j < n; j++) {
+        const hl_instr *i = &J->t->code[cv[j].i], *w = &J->t->code[cv[j].twin];
+        if (J->read[i->d])
+            gcc_jit_block_add_assignment(blk, NULL, cv[j].d, hl_jit_val(J, w->d));
+        if (i->x >= 0 && J->read[i->x])
+            gcc_jit_block_add_assignment(blk, NULL, cv[j].x, hl_jit_val(J, w->x));
+    }
+}
+
+/* long hl_jit_iter(double *z, long n): hl_tape_iterate as one loop, the
+ * state in machine registers between steps.  A step is kept only if its
+ * outputs are all finite: sum (y - y) is 0 exactly then, NaN otherwise.
+ * With watch, long hl_jit_watch(double *z, long n, double w0, double *dev)
+ * for hl_tape_iterate_watch: the last output is not fed back but
+ * *dev = max(*dev, |w - w0|) is kept over the steps taken. */
+static void build_loop(jit *J, int watch)
+{
+    const hl_tape *t = J->t;
+    gcc_jit_context *c = J->c;
+    gcc_jit_type *lng = gcc_jit_context_get_type(c, GCC_JIT_TYPE_LONG);
+    gcc_jit_param *prm[4] = {gcc_jit_context_new_param(c, NULL, J->dblp, "z"),
+                             gcc_jit_context_new_param(c, NULL, lng, "n"),
+                             gcc_jit_context_new_param(c, NULL, J->dbl, "w0"),
+                             gcc_jit_context_new_param(c, NULL, J->dblp, "dev")};
+    J->fun =
+        gcc_jit_context_new_function(c, NULL, GCC_JIT_FUNCTION_EXPORTED, lng,
+                                     watch ? "hl_jit_watch" : "hl_jit_iter", watch ? 4 : 2, prm, 0);
+    hl_jit_new_locals(J, "s");
+    /* NOTE: in a loop the step's chain often waits for sin q alone while
+     * cos q (in H, watched) is off it: sincos is slower than sin and would
+     * hold the chain, where a separate cos overlaps with the next step.
+     * Not in Newton's solve, where both are on the chain and one sincos
+     * is cheaper than two calls. */
+    J->split_sincos = 1;
+    const int nmap = watch ? t->nout - 1 : t->nout;
+    gcc_jit_lvalue *k = gcc_jit_function_new_local(J->fun, NULL, lng, "k");
+    gcc_jit_lvalue *m = gcc_jit_function_new_local(J->fun, NULL, J->dbl, "m");
+    gcc_jit_lvalue *e = gcc_jit_function_new_local(J->fun, NULL, J->dbl, "e");
+    gcc_jit_lvalue **y = hl_xmalloc((size_t)t->nout * sizeof *y);
+    for (int j = 0; j < t->nout; j++) {
+        char name[32];
+        snprintf(name, sizeof name, "y%d", j);
+        y[j] = gcc_jit_function_new_local(J->fun, NULL, J->dbl, name);
+    }
+    gcc_jit_rvalue *z = gcc_jit_param_as_rvalue(prm[0]), *n = gcc_jit_param_as_rvalue(prm[1]);
+    gcc_jit_block *entry = gcc_jit_function_new_block(J->fun, "entry");
+    gcc_jit_block *cond = gcc_jit_function_new_block(J->fun, "cond");
+    gcc_jit_block *body = gcc_jit_function_new_block(J->fun, "body");
+    gcc_jit_block *latch = gcc_jit_function_new_block(J->fun, "latch");
+    gcc_jit_block *done = gcc_jit_function_new_block(J->fun, "done");
+    J->blk = entry;
+    for (int r = 0; r < t->nin; r++)
+        hl_jit_assign(J, r, gcc_jit_lvalue_as_rvalue(elem(J, z, r)));
+    int ncarry;
+    carry *cv = find_carries(J, nmap, &ncarry);
+    carry_start(J, cv, ncarry);
+    gcc_jit_block_add_assignment(entry, NULL, k, gcc_jit_context_zero(c, lng));
+    if (watch)
+        gcc_jit_block_add_assignment(entry, NULL, m,
+                                     gcc_jit_lvalue_as_rvalue(gcc_jit_rvalue_dereference(
+                                         gcc_jit_param_as_rvalue(prm[3]), NULL)));
+    gcc_jit_block_end_with_jump(entry, NULL, cond);
+    gcc_jit_block_end_with_conditional(
+        cond, NULL,
+        gcc_jit_context_new_comparison(c, NULL, GCC_JIT_COMPARISON_LT, gcc_jit_lvalue_as_rvalue(k),
+                                       n),
+        body, done);
+    J->blk = body;
+    for (int i = 0; i < t->ncode; i++) {
+        int cj = carried(cv, ncarry, i);
+        if (cj >= 0)
+            carry_use(J, &cv[cj]);
+        else
+            hl_jit_emit(J, &t->code[i]);
+    }
+    gcc_jit_rvalue *acc = gcc_jit_context_zero(c, J->dbl);
+    for (int j = 0; j < t->nout; j++) {
+        gcc_jit_block_add_assignment(body, NULL, y[j], hl_jit_val(J, t->outreg[j]));
+        gcc_jit_rvalue *yv = gcc_jit_lvalue_as_rvalue(y[j]);
+        acc = gcc_jit_context_new_binary_op(
+            c, NULL, GCC_JIT_BINARY_OP_PLUS, J->dbl, acc,
+            gcc_jit_context_new_binary_op(c, NULL, GCC_JIT_BINARY_OP_MINUS, J->dbl, yv, yv));
+    }
+    gcc_jit_block_end_with_conditional(
+        body, NULL,
+        gcc_jit_context_new_comparison(c, NULL, GCC_JIT_COMPARISON_EQ, acc,
+                                       gcc_jit_context_zero(c, J->dbl)),
+        latch, done);
+    gcc_jit_block *next = latch;
+    if (watch) { /* e = |w - w0|; m = e > m ? e : m */
+        gcc_jit_rvalue *w = gcc_jit_lvalue_as_rvalue(y[t->nout - 1]);
+        gcc_jit_rvalue *dw = gcc_jit_context_new_binary_op(c, NULL, GCC_JIT_BINARY_OP_MINUS, J->dbl,
+                                                           w, gcc_jit_param_as_rvalue(prm[2]));
+        gcc_jit_function *fabs_ = gcc_jit_context_get_builtin_function(c, "__builtin_fabs");
+        gcc_jit_block_add_assignment(latch, NULL, e,
+                                     gcc_jit_context_new_call(c, NULL, fabs_, 1, &dw));
+        gcc_jit_block *raise = gcc_jit_function_new_block(J->fun, "raise");
+        next = gcc_jit_function_new_block(J->fun, "keep");
+        gcc_jit_block_end_with_conditional(
+            latch, NULL,
+            gcc_jit_context_new_comparison(c, NULL, GCC_JIT_COMPARISON_GT,
+                                           gcc_jit_lvalue_as_rvalue(e),
+                                           gcc_jit_lvalue_as_rvalue(m)),
+            raise, next);
+        gcc_jit_block_add_assignment(raise, NULL, m, gcc_jit_lvalue_as_rvalue(e));
+        gcc_jit_block_end_with_jump(raise, NULL, next);
+    }
+    carry_next(J, next, cv, ncarry);
+    free(cv);
+    for (int j = 0; j < nmap; j++)
+        gcc_jit_block_add_assignment(next, NULL, J->loc[j], gcc_jit_lvalue_as_rvalue(y[j]));
+    gcc_jit_block_add_assignment_op(next, NULL, k, GCC_JIT_BINARY_OP_PLUS,
+                                    gcc_jit_context_one(c, lng));
+    gcc_jit_block_end_with_jump(next, NULL, cond);
+    for (int j = 0; j < nmap; j++)
+        gcc_jit_block_add_assignment(done, NULL, elem(J, z, j),
+                                     gcc_jit_lvalue_as_rvalue(J->loc[j]));
+    if (watch)
+        gcc_jit_block_add_assignment(
+            done, NULL, gcc_jit_rvalue_dereference(gcc_jit_param_as_rvalue(prm[3]), NULL),
+            gcc_jit_lvalue_as_rvalue(m));
+    gcc_jit_block_end_with_return(done, NULL, gcc_jit_lvalue_as_rvalue(k));
+    free(y);
+}
+
+/* The shapes hl_tape_iterate and hl_tape_iterate_watch accept. */
+static int iter_shape(const hl_tape *t)
+{
+    return t->nout >= 1 && t->nout <= t->nin;
+}
+static int watch_shape(const hl_tape *t)
+{
+    return t->nout >= 2 && t->nout == t->nin;
+}
+
+/* The functions the tape's shape allows, in context c. */
+static void build(gcc_jit_context *c, const hl_tape *t)
+{
+    jit J = {0};
+    hl_jit_init(&J, c, t);
+    J.loc = hl_xcalloc((size_t)t->nregs + 1, sizeof *J.loc);
+    J.read = hl_jit_registers_read(t);
+    build_eval(&J);
+    if (iter_shape(t))
+        build_loop(&J, 0);
+    if (watch_shape(t))
+        build_loop(&J, 1);
+    free(J.loc);
+    free(J.read);
+}
+
+hl_status hl_tape_jit(hl_tape *t, hl_error *err)
+{
+    gcc_jit_context *c;
+    hl_status st = hl_jit_context_new(&c, 2, NULL, err);
+    if (st != HL_OK)
+        return st;
+    build(c, t);
+    gcc_jit_result *res;
+    void *code;
+    st = hl_jit_compile(&res, &code, c, "hl_jit_eval", "the tape", err);
+    if (st != HL_OK)
+        return st;
+    hl_tape_jit_clear(t);
+    t->jit_result = res;
+    *(void **)&t->jit_fn = code;
+    if (iter_shape(t))
+        *(void **)&t->jit_iter = gcc_jit_result_get_code(res, "hl_jit_iter");
+    if (watch_shape(t))
+        *(void **)&t->jit_watch = gcc_jit_result_get_code(res, "hl_jit_watch");
+    return HL_OK;
+}
+
+void hl_tape_jit_clear(hl_tape *t)
+{
+    if (t->jit_result != NULL)
+        gcc_jit_result_release(t->jit_result);
+    t->jit_result = NULL;
+    t->jit_fn = NULL;
+    t->jit_iter = NULL;
+    t->jit_watch = NULL;
+}
+
+#else /* no libgccjit */
+
+hl_status hl_tape_jit(hl_tape *t, hl_error *err)
+{
+    (void)t;
+    return hl_error_set(err, HL_EUNSUP, NULL, -1, 0, "hamlie was built without libgccjit");
+}
+
+void hl_tape_jit_clear(hl_tape *t)
+{
+    (void)t;
+}
+
+#endif
+
+int hl_tape_jit_active(const hl_tape *t)
+{
+    return t->jit_fn != NULL;
+}
+
+static int all_finite(const double *x, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(x[i]))
+            return 0;
+    return 1;
+}
+
+long hl_tape_iterate(double *in, long n, hl_tape *t)
+{
+    if (t->nout < 1 || t->nout > t->nin)
+        return -1;
+    if (n <= 0)
+        return 0;
+    if (t->jit_iter != NULL)
+        return t->jit_iter(in, n);
+    double *y = hl_xmalloc((size_t)t->nout * sizeof *y);
+    long k = 0;
+    for (; k < n; k++) {
+        hl_tape_eval_d(y, in, t);
+        if (!all_finite(y, t->nout))
+            break;
+        memcpy(in, y, (size_t)t->nout * sizeof *y);
+    }
+    free(y);
+    return k;
+}
+
+long hl_tape_iterate_watch(double *in, long n, double w0, double *dev, hl_tape *t)
+{
+    if (t->nout < 2 || t->nout != t->nin)
+        return -1;
+    if (n <= 0)
+        return 0;
+    if (t->jit_watch != NULL)
+        return t->jit_watch(in, n, w0, dev);
+    const int nmap = t->nout - 1;
+    double *y = hl_xmalloc((size_t)t->nout * sizeof *y);
+    long k = 0;
+    for (; k < n; k++) {
+        hl_tape_eval_d(y, in, t);
+        if (!all_finite(y, t->nout))
+            break;
+        double e = fabs(y[nmap] - w0);
+        if (e > *dev)
+            *dev = e;
+        memcpy(in, y, (size_t)nmap * sizeof *y);
+    }
+    free(y);
+    return k;
+}

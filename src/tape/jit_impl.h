@@ -1,0 +1,63 @@
+/* Internals of the libgccjit back ends, shared by jit_common.c (contexts,
+ * compilation, libm imports), jit_eval.c (point evaluation and the
+ * iteration loops), jit_newton.c (the Newton solve) and jit.c (the
+ * Taylor-ODE recursion).  Only with libgccjit (HAMLIE_HAVE_GCCJIT). */
+#ifndef HAMLIE_JIT_IMPL_H
+#define HAMLIE_JIT_IMPL_H
+
+#ifdef HAMLIE_HAVE_GCCJIT
+#include <libgccjit.h>
+
+#include "tape/tape_impl.h"
+
+/* One tape being built into a function: its registers as locals. */
+typedef struct jit {
+    gcc_jit_context *c;
+    gcc_jit_type *dbl, *dblp;
+    gcc_jit_block *blk;
+    gcc_jit_function *fun;
+    gcc_jit_lvalue **loc; /* one local per non-constant register */
+    gcc_jit_function *lib[HL_OP_COUNT];
+    gcc_jit_function *cosh, *sqrt, *sin, *cos;
+    const hl_tape *t;
+    unsigned char *read; /* by register: read by an instruction or an output */
+    int split_sincos;    /* sin and cos as two calls (build_loop) */
+} jit;
+
+/* ---- jit_common.c ---- */
+
+/* A context at optimization level opt: no debug information, diagnostics
+ * kept for the caller (not printed), no contraction into FMA, then
+ * $HL_JIT_FLAGS.  With fma != NULL also the host's vector instructions
+ * (*fma = 1 if they include FMA).  HL_EUNSUP if libgccjit cannot start. */
+hl_status hl_jit_context_new(gcc_jit_context **c, int opt, int *fma, hl_error *err);
+
+/* J's types and builtins in context c, for tape t (J->loc, J->read: the
+ * caller's). */
+void hl_jit_init(jit *J, gcc_jit_context *c, const hl_tape *t);
+
+/* Compile c and look up the function entry; releases c.  On success *res
+ * owns the code; else HL_EUNSUP with libgccjit's first error, "libgccjit
+ * failed on <what>: ...". */
+hl_status hl_jit_compile(gcc_jit_result **res, void **code, gcc_jit_context *c, const char *entry,
+                         const char *what, hl_error *err);
+
+/* The libm function name (one double argument), and the one an op calls
+ * (pow, atan2: two; sincos: x and two pointers), imported once per J. */
+gcc_jit_function *hl_jit_import1(jit *J, const char *name);
+gcc_jit_function *hl_jit_import_lib(jit *J, int op);
+
+/* ---- jit_eval.c: a tape's instructions in J->fun ---- */
+
+/* By register: 1 if an instruction or an output reads it (malloc'd). */
+unsigned char *hl_jit_registers_read(const hl_tape *t);
+/* Fresh locals of J->fun for the registers that are not constants. */
+void hl_jit_new_locals(jit *J, const char *prefix);
+/* The value of register r: an immediate for a constant, else its local. */
+gcc_jit_rvalue *hl_jit_val(jit *J, int r);
+void hl_jit_assign(jit *J, int d, gcc_jit_rvalue *v);
+/* One instruction into J->blk, as the interpreter (eval.c) computes it. */
+void hl_jit_emit(jit *J, const hl_instr *i);
+
+#endif
+#endif
