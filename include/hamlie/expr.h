@@ -117,6 +117,39 @@ typedef struct hl_eqn {
 hl_status hl_parse_list(hl_eqn *out, int max, int *n, hl_pool *pool, const char *src,
                         hl_error *err);
 
+/* ---- extending the grammar -------------------------------------------- *
+ * A language written in formulas (the scheme language of scheme.h: "Q = q +
+ * D*Hp(q, P)") reads its text with this parser and gives meaning to the
+ * tree afterwards.  What it adds to the grammar is calls of its own names:
+ *   call := name '(' expr {',' expr} ')'     name not a func or func2
+ * Each is handed, arguments parsed, to the extension's call(), which makes
+ * the node standing for it (typically a symbol the grammar cannot spell,
+ * such as "#3", keyed to the call in the caller's own table) or refuses it
+ * with err set at a position in src.  Without an extension such a call is
+ * "unknown function". */
+#define HL_PARSE_MAX_ARGS 8
+
+typedef struct hl_parse_call {
+    const char *src;  /* the whole text */
+    const char *name; /* the called name, len bytes (not NUL-terminated) */
+    int len;
+    int pos, end; /* byte offsets of the name and of the closing ')' */
+    int nargs;    /* 1 .. HL_PARSE_MAX_ARGS */
+    const hl_expr *const *args;
+    const int *arg_pos; /* byte offset where each argument starts */
+} hl_parse_call;
+
+typedef struct hl_parse_ext {
+    /* Make *out for the call c, or return an error status with err set. */
+    hl_status (*call)(const hl_expr **out, void *arg, const hl_parse_call *c, hl_error *err);
+    void *arg;
+    int equations; /* nonzero: every item must be "lhs = rhs" ("expected '='") */
+} hl_parse_ext;
+
+/* hl_parse_list with an extension (ext NULL: hl_parse_list itself). */
+hl_status hl_parse_list_ext(hl_eqn *out, int max, int *n, hl_pool *pool, const char *src,
+                            const hl_parse_ext *ext, hl_error *err);
+
 /* Byte offset of the first token in src that is the symbol `name`, or -1.
  * Lets later layers point at a symbol they reject ("unknown symbol 'z'"). */
 int hl_symbol_pos(const char *src, const char *name);

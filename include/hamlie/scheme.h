@@ -20,9 +20,9 @@
  * Examples: "Q = q + D*Hp(q, p); P = p - D*Hq(q, p)" (explicit Euler),
  * "(Q-q)/D = Hp((q+Q)/2, (p+P)/2); (P-p)/D = -Hq((q+Q)/2, (p+P)/2)".
  *
- * The reader is hamlie's own (src/scheme/read.c, on the expression
- * language's tokenizer plus ','): the expression parser has no calls with
- * two arguments, and the vector reading is done while parsing.
+ * The text is read by the expression parser (hl_parse_list_ext, which hands
+ * Hq, Hp, H, dot and int to the scheme reader); src/scheme/read.c then
+ * gives each node of the tree its scalar or vector value.
  *
  * Instantiated for a system (hl_scheme_new & co.), a scheme becomes an
  * hl_scheme: m scalar unknowns with reserved names that no user symbol can

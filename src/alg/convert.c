@@ -2,79 +2,52 @@
  * The nodes are converted in post-order (hl_expr_postorder), so each finds
  * its operands in the memo and nothing recurses: a sum of 10^5 terms is a
  * chain 10^5 deep. */
-#include <stdint.h>
 #include <stdlib.h>
 
 #include "alg/alg_internal.h"
 #include "base/buf.h"
+#include "base/memo.h"
 
-typedef struct memo_entry {
-    const hl_expr *key;
-    hl_alg val;
-} memo_entry;
+typedef struct convert_walk {
+    hl_memo m; /* node -> its element, an hl_alg * owned here */
+    hl_alg_ctx *ctx;
+    hl_error *err;
+} convert_walk;
 
-typedef struct memo {
-    memo_entry *slot;
-    size_t nslots, count; /* nslots a power of two */
-} memo;
-
-static size_t memo_hash(const hl_expr *e, size_t n)
+static void memo_free(convert_walk *w)
 {
-    return (size_t)(((uintptr_t)e >> 4) * 0x9e3779b97f4a7c15ULL) & (n - 1);
+    for (size_t i = 0; i < w->m.cap; i++)
+        if (w->m.keys[i] != NULL) {
+            hl_alg_clear(w->m.vals[i].p, w->ctx);
+            free(w->m.vals[i].p);
+        }
+    hl_memo_clear(&w->m);
 }
 
-static memo_entry *memo_find(memo *m, const hl_expr *e)
-{
-    size_t j = memo_hash(e, m->nslots);
-    while (m->slot[j].key != NULL && m->slot[j].key != e)
-        j = (j + 1) & (m->nslots - 1);
-    return &m->slot[j];
-}
-
-static void memo_grow(memo *m)
-{
-    memo old = *m;
-    m->nslots *= 2;
-    m->slot = hl_xcalloc(m->nslots, sizeof *m->slot);
-    for (size_t i = 0; i < old.nslots; i++)
-        if (old.slot[i].key != NULL)
-            *memo_find(m, old.slot[i].key) = old.slot[i]; /* moves the hl_alg */
-    free(old.slot);
-}
-
-static void memo_clear(memo *m, hl_alg_ctx *ctx)
-{
-    for (size_t i = 0; i < m->nslots; i++)
-        if (m->slot[i].key != NULL)
-            hl_alg_clear(&m->slot[i].val, ctx);
-    free(m->slot);
-}
-
-static int convert(hl_alg *r, const hl_expr *e, memo *m, hl_alg_ctx *ctx, hl_error *err);
+static int convert(hl_alg *r, const hl_expr *e, convert_walk *w);
 
 /* r = value of e, through the memo. */
-static int value(hl_alg *r, const hl_expr *e, memo *m, hl_alg_ctx *ctx, hl_error *err)
+static int value(hl_alg *r, const hl_expr *e, convert_walk *w)
 {
-    memo_entry *me = memo_find(m, e);
-    if (me->key != NULL) {
-        hl_alg_set(r, &me->val, ctx);
+    const hl_memo_val *known = hl_memo_get(&w->m, e);
+    if (known != NULL) {
+        hl_alg_set(r, known->p, w->ctx);
         return HL_OK;
     }
-    int status = convert(r, e, m, ctx, err);
+    int status = convert(r, e, w);
     if (status != HL_OK)
         return status;
-    if (2 * (m->count + 1) > m->nslots)
-        memo_grow(m);
-    me = memo_find(m, e);
-    me->key = e;
-    hl_alg_init(&me->val, ctx);
-    hl_alg_set(&me->val, r, ctx);
-    m->count++;
+    hl_alg *v = hl_xmalloc(sizeof *v);
+    hl_alg_init(v, w->ctx);
+    hl_alg_set(v, r, w->ctx);
+    hl_memo_put(&w->m, e)->p = v;
     return HL_OK;
 }
 
-static int convert(hl_alg *r, const hl_expr *e, memo *m, hl_alg_ctx *ctx, hl_error *err)
+static int convert(hl_alg *r, const hl_expr *e, convert_walk *w)
 {
+    hl_alg_ctx *ctx = w->ctx;
+    hl_error *err = w->err;
     int status = HL_OK;
     hl_alg a, b;
     switch (e->kind) {
@@ -95,7 +68,7 @@ static int convert(hl_alg *r, const hl_expr *e, memo *m, hl_alg_ctx *ctx, hl_err
         /* fall through */
     case HL_NEG:
         hl_alg_init(&a, ctx);
-        status = value(&a, e->a, m, ctx, err);
+        status = value(&a, e->a, w);
         if (status == HL_OK) {
             if (e->kind == HL_NEG)
                 hl_alg_neg(r, &a, ctx);
@@ -109,9 +82,9 @@ static int convert(hl_alg *r, const hl_expr *e, memo *m, hl_alg_ctx *ctx, hl_err
     }
     hl_alg_init(&a, ctx);
     hl_alg_init(&b, ctx);
-    status = value(&a, e->a, m, ctx, err);
+    status = value(&a, e->a, w);
     if (status == HL_OK)
-        status = value(&b, e->b, m, ctx, err);
+        status = value(&b, e->b, w);
     if (status == HL_OK) {
         switch (e->kind) {
         case HL_ADD: hl_alg_add(r, &a, &b, ctx); break;
@@ -128,33 +101,28 @@ static int convert(hl_alg *r, const hl_expr *e, memo *m, hl_alg_ctx *ctx, hl_err
     return status;
 }
 
-typedef struct convert_walk {
-    memo m;
-    hl_alg_ctx *ctx;
-    hl_error *err;
-} convert_walk;
-
 static int convert_node(void *arg, const hl_expr *e)
 {
     convert_walk *w = arg;
     hl_alg t;
     hl_alg_init(&t, w->ctx);
-    int status = value(&t, e, &w->m, w->ctx, w->err);
+    int status = value(&t, e, w);
     hl_alg_clear(&t, w->ctx);
     return status;
 }
 
 hl_status hl_alg_from_expr(hl_alg *r, const hl_expr *e, hl_alg_ctx *ctx, hl_error *err)
 {
-    convert_walk w = {{hl_xcalloc(64, sizeof(memo_entry)), 64, 0}, ctx, err};
+    convert_walk w = {{0}, ctx, err};
+    hl_memo_init(&w.m);
     int status = hl_expr_postorder(&e, 1, convert_node, &w);
     hl_alg t;
     hl_alg_init(&t, ctx);
     if (status == HL_OK)
-        status = value(&t, e, &w.m, ctx, err);
+        status = value(&t, e, &w);
     if (status == HL_OK)
         hl_alg_swap(r, &t, ctx);
     hl_alg_clear(&t, ctx);
-    memo_clear(&w.m, ctx);
+    memo_free(&w);
     return status;
 }

@@ -41,7 +41,9 @@ typedef struct parser {
     hl_error *err;
     hl_token prev; /* the token before lx.tok */
     int depth;
-    long nodes; /* made so far, against HL_PARSE_MAX_NODES */
+    long nodes;              /* made so far, against HL_PARSE_MAX_NODES */
+    const hl_parse_ext *ext; /* the caller's calls and rules, or NULL */
+    int in_args;             /* directly inside a call that takes several arguments */
 } parser;
 
 static int subexpr(parser *p, int limit, value *out);
@@ -119,8 +121,59 @@ static int second_argument(parser *p, hl_fun f, value *arg2)
     return subexpr(p, 0, arg2);
 }
 
+/* The arguments of a call that may take several, up to its ')': "a, b, c". */
+static int argument_list(parser *p, value *args, int *nargs, hl_token open)
+{
+    int st, saved = p->in_args;
+    p->in_args = 1;
+    *nargs = 0;
+    for (;;) {
+        if (*nargs == HL_PARSE_MAX_ARGS) {
+            st = hl_error_set(p->err, HL_EPARSE, p->src, p->lx.tok.pos, 1,
+                              "too many arguments (at most %d)", HL_PARSE_MAX_ARGS);
+            break;
+        }
+        if (!starts_operand(p->lx.tok.kind)) {
+            st = expected_expression(p);
+            break;
+        }
+        if ((st = subexpr(p, 0, &args[(*nargs)++])) || p->lx.tok.kind != HL_TK_COMMA)
+            break;
+        if ((st = next(p)))
+            break;
+    }
+    p->in_args = saved;
+    return st ? st : close_paren(p, open);
+}
+
+/* name '(' args ')' for a name that is not a function of the language: the
+ * caller's extension makes the node (hl_parse_ext). */
+static int extension_call(parser *p, hl_token name, value *v)
+{
+    hl_token open = p->lx.tok;
+    value args[HL_PARSE_MAX_ARGS];
+    const hl_expr *arg_e[HL_PARSE_MAX_ARGS];
+    int arg_pos[HL_PARSE_MAX_ARGS], nargs, st;
+    if ((st = enter(p, open)) || (st = next(p)) || (st = argument_list(p, args, &nargs, open)))
+        return st;
+    for (int i = 0; i < nargs; i++)
+        arg_e[i] = args[i].e, arg_pos[i] = args[i].pos;
+    hl_parse_call c = {.src = p->src,
+                       .name = p->src + name.pos,
+                       .len = name.len,
+                       .pos = name.pos,
+                       .end = p->prev.pos,
+                       .nargs = nargs,
+                       .args = arg_e,
+                       .arg_pos = arg_pos};
+    v->e = NULL;
+    if ((st = p->ext->call(&v->e, p->ext->arg, &c, p->err)) == HL_OK && v->e == NULL)
+        st = hl_error_set(p->err, HL_EINVAL, p->src, name.pos, name.len, "bad call");
+    return st;
+}
+
 /* simple := number | 'pi' | symbol | func '(' expr ')' | func2 '(' expr ',' expr ')'
- *         | '(' expr ')' */
+ *         | '(' expr ')' | call (with an extension: name '(' expr {',' expr} ')') */
 static int simpleexp(parser *p, value *v)
 {
     hl_token t = p->lx.tok;
@@ -135,12 +188,16 @@ static int simpleexp(parser *p, value *v)
         v->e = hl_num_fmpq(p->pool, p->lx.num);
         v->flags = V_TOKEN | V_LIT;
         return next(p);
-    case HL_TK_LPAREN:
+    case HL_TK_LPAREN: {
+        int saved = p->in_args;
+        p->in_args = 0;
         if ((st = enter(p, t)) || (st = next(p)) || (st = subexpr(p, 0, v)))
             return st;
+        p->in_args = saved;
         v->pos = t.pos;
         v->flags = 0; /* "(2)" is a number but not a literal */
         return close_paren(p, t);
+    }
     case HL_TK_NAME:
         break;
     default:
@@ -151,6 +208,8 @@ static int simpleexp(parser *p, value *v)
     int f = hl_fun_lookup(name, t.len);
     if ((st = next(p)))
         return st;
+    if (f < 0 && p->lx.tok.kind == HL_TK_LPAREN && p->ext != NULL && p->ext->call != NULL)
+        return extension_call(p, t, v);
     if (f < 0 && p->lx.tok.kind == HL_TK_LPAREN)
         return error_at(p, HL_EPARSE, t, "unknown function '%s'", 1);
     if (f < 0) {
@@ -170,8 +229,11 @@ static int simpleexp(parser *p, value *v)
         return hl_error_set(p->err, HL_EPARSE, p->src, open.pos, open.len,
                             "expected '(' after '%s'", hl_fun_name((hl_fun)f));
     value arg, arg2;
+    int saved = p->in_args;
+    p->in_args = hl_fun_arity((hl_fun)f) > 1;
     if ((st = enter(p, open)) || (st = next(p)) || (st = subexpr(p, 0, &arg)))
         return st;
+    p->in_args = saved;
     if (hl_fun_arity((hl_fun)f) == 1) {
         if (p->lx.tok.kind == HL_TK_COMMA)
             return hl_error_set(p->err, HL_EPARSE, p->src, p->lx.tok.pos, 1,
@@ -301,7 +363,9 @@ static int subexpr(parser *p, int limit, value *v)
         hl_lex_text(a, sizeof a, p->src, p->prev);
         hl_lex_text(b, sizeof b, p->src, p->lx.tok);
         return hl_error_set(p->err, HL_EPARSE, p->src, p->lx.tok.pos, p->lx.tok.len,
-                            "expected an operator between '%s' and '%s'", a, b);
+                            p->in_args ? "expected ',' or an operator between '%s' and '%s'"
+                                       : "expected an operator between '%s' and '%s'",
+                            a, b);
     }
     return HL_OK;
 }
@@ -330,6 +394,8 @@ static int parser_init(parser *p, hl_pool *pool, const char *src, hl_error *err)
     p->err = err;
     p->depth = 0;
     p->nodes = 0;
+    p->ext = NULL;
+    p->in_args = 0;
     memset(&p->prev, 0, sizeof p->prev);
     p->prev.kind = HL_TK_EOF;
     if (strlen(src) > (size_t)1 << 30)
@@ -371,6 +437,8 @@ static int parse_items(parser *p, hl_eqn *out, int max, int *n)
         out[*n].lhs = lhs.e;
         out[*n].rhs = NULL;
         out[*n].pos = start.pos;
+        if (p->ext != NULL && p->ext->equations && p->lx.tok.kind != HL_TK_EQ)
+            return error_at(p, HL_EPARSE, p->lx.tok, "expected '=', found '%s'", 1);
         if (p->lx.tok.kind == HL_TK_EQ) {
             if ((st = next(p)) || (st = subexpr(p, 0, &rhs)))
                 return st;
@@ -392,12 +460,20 @@ static int parse_items(parser *p, hl_eqn *out, int max, int *n)
 
 hl_status hl_parse_list(hl_eqn *out, int max, int *n, hl_pool *pool, const char *src, hl_error *err)
 {
+    return hl_parse_list_ext(out, max, n, pool, src, NULL, err);
+}
+
+hl_status hl_parse_list_ext(hl_eqn *out, int max, int *n, hl_pool *pool, const char *src,
+                            const hl_parse_ext *ext, hl_error *err)
+{
     parser p;
     int st, count = 0;
 
     *n = 0;
-    if ((st = parser_init(&p, pool, src, err)) == HL_OK)
+    if ((st = parser_init(&p, pool, src, err)) == HL_OK) {
+        p.ext = ext;
         st = parse_items(&p, out, max, &count);
+    }
     if (st == HL_OK)
         *n = count;
     hl_lex_clear(&p.lx);

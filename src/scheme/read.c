@@ -1,137 +1,183 @@
-/* The scheme language: vector equations read and instantiated at once.
+/* The scheme language (scheme.h): a pass over the formula parser's tree.
  *
- * A small recursive-descent reader on the expression language's tokenizer
- * (src/expr/lex.h), with ',' handled here (the expression language has no
- * commas).  Every value is a scalar or an N-vector of expressions; the
- * grammar and precedences are those of hl_parse (unary minus looser than ^,
- * ^ right associative). */
+ * The text is read by hl_parse_list_ext, the expression grammar with one
+ * extension: the language's own calls Hq, Hp, H, dot and int, which
+ * language_call (below) checks and turns into placeholder symbols "#k" the
+ * grammar cannot spell, keyed to the call in a table.  Then each item's tree
+ * is walked once, in post-order, giving every node its value: a scalar or an
+ * N-vector of expressions in the scheme's pool (q, p, Q, P and the stages are
+ * vectors; arithmetic and functions act componentwise, a scalar combining
+ * with every component).  A placeholder's value is made from its arguments'
+ * values when the walk reaches it; an integrand is walked on its own, since
+ * there its variable means s and not what the same node means outside.
+ *
+ * The tree lives in a pool of its own: values are made in the scheme's pool,
+ * so nothing of the reading (placeholders, the text's names) stays there. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "base/buf.h"
-#include "expr/lex.h"
+#include "base/memo.h"
 #include "scheme/scheme_impl.h"
 
-enum { TK_COMMA = 100 };
-
 typedef struct vv {
-    int vec;              /* 1: N components; 0: a scalar */
-    const hl_expr **c;    /* N or 1 entries (in the reader's arena) */
+    int vec;           /* 1: N components; 0: a scalar */
+    const hl_expr **c; /* N or 1 entries */
 } vv;
 
 typedef struct stage {
     char *name;
-    int u0;               /* index of its first unknown */
+    int u0; /* index of its first unknown */
 } stage;
 
+typedef enum call_kind { CALL_H, CALL_HQ, CALL_HP, CALL_DOT, CALL_INT } call_kind;
+
+/* One of the language's calls, as the parser met it. */
+typedef struct call {
+    call_kind kind;
+    const hl_expr *a, *b; /* the arguments; int(s, f): a the variable, b f */
+    int pos, end;         /* the name's offset and the closing ')''s */
+} call;
+
 typedef struct rd {
-    hl_lexer lx;
-    int kind, pos, len;   /* the current token */
     const char *src;
     sb *b;
     const scheme_frame *f;
     hl_system *sys;
-    hl_pool *pool;
+    hl_pool *pool; /* the scheme's: values */
+    hl_pool *tree; /* the parse tree's */
     int N;
     const hl_expr **Qs, **Ps; /* the next point's symbols */
     stage *st;
     int nst;
-    int in_int;            /* inside int(s, ...): s is the scalar HL_SCHEME_S */
-    const char *svar;
-    int svar_len;
-    void **arena;
+    call *calls;
+    int ncalls;
+    hl_memo call_of; /* placeholder node -> index in calls */
+    void **arena;    /* the values' storage, freed at the end */
     int narena, carena;
+    int item_pos; /* where the item being walked starts */
     hl_error *err;
 } rd;
 
-static const hl_expr **alloc_c(rd *r, int n)
+/* One walk: the values of the nodes met so far in one context. */
+typedef struct walk {
+    rd *r;
+    hl_memo values;  /* node -> vv * */
+    const char *var; /* inside int(var, ...): the variable's name, else NULL */
+} walk;
+
+static vv *new_value(rd *r, int vec)
 {
+    int n = vec ? r->N : 1;
     if (r->narena == r->carena) {
         r->carena = 2 * r->carena + 16;
         r->arena = hl_xrealloc(r->arena, (size_t)r->carena * sizeof *r->arena);
     }
-    const hl_expr **c = hl_xmalloc((size_t)(n > 0 ? n : 1) * sizeof *c);
-    r->arena[r->narena++] = c;
-    return c;
+    vv *v = hl_xmalloc(sizeof *v + (size_t)n * sizeof *v->c);
+    v->vec = vec;
+    v->c = (const hl_expr **)(v + 1);
+    r->arena[r->narena++] = v;
+    return v;
 }
 
 static int dim(const rd *r, const vv *v) { return v->vec ? r->N : 1; }
 static const hl_expr *comp(const vv *v, int j) { return v->c[v->vec ? j : 0]; }
 
-static int next(rd *r)
+static int name_is(const char *s, int len, const char *word)
 {
-    const char *s = r->src;
-    int i = r->lx.pos;
-    while (s[i] == ' ' || s[i] == '\t' || s[i] == '\n' || s[i] == '\r')
-        i++;
-    if (s[i] == ',') {
-        r->lx.pos = i + 1;
-        r->kind = TK_COMMA, r->pos = i, r->len = 1;
+    return (int)strlen(word) == len && memcmp(s, word, (size_t)len) == 0;
+}
+
+static int name_error(const rd *r, hl_status st, int pos, int len, const char *fmt)
+{
+    char nm[40];
+    snprintf(nm, sizeof nm, "%.*s", len > 32 ? 32 : len, r->src + pos);
+    return hl_error_set(r->err, st, r->src, pos, len, fmt, nm);
+}
+
+/* ---- the language's calls, while parsing ---------------------------------- */
+
+static int call_kind_of(const char *name, int len)
+{
+    static const char *const names[] = {
+        [CALL_H] = "H", [CALL_HQ] = "Hq", [CALL_HP] = "Hp", [CALL_DOT] = "dot", [CALL_INT] = "int"};
+    for (int k = 0; k < (int)(sizeof names / sizeof *names); k++)
+        if (name_is(name, len, names[k]))
+            return k;
+    return -1;
+}
+
+/* An int() already read whose name lies inside [pos, end]: one nested in it. */
+static const call *int_inside(const rd *r, int pos, int end)
+{
+    for (int i = 0; i < r->ncalls; i++)
+        if (r->calls[i].kind == CALL_INT && r->calls[i].pos > pos && r->calls[i].pos < end)
+            return &r->calls[i];
+    return NULL;
+}
+
+static int check_call(rd *r, int kind, const hl_parse_call *c)
+{
+    if (kind < 0)
+        return name_error(r, HL_EINVAL, c->pos, c->len,
+                          "unknown function '%s' (the scheme language has Hq, Hp, H, dot, "
+                          "int and the elementary functions)");
+    if (kind != CALL_DOT && kind != CALL_INT && !hl_system_has_H(r->sys))
+        return name_error(r, HL_EINVAL, c->pos, c->len, "'%s' needs a Hamiltonian");
+    if (c->nargs < 2)
+        return hl_error_set(r->err, HL_EPARSE, r->src, c->end, 1,
+                            "expected ',': '%.*s' takes two arguments", c->len, c->name);
+    if (c->nargs > 2) { /* at the ',' before the third */
+        int comma = c->arg_pos[2] - 1;
+        while (comma > 0 && r->src[comma] != ',')
+            comma--;
+        return hl_error_set(r->err, HL_EPARSE, r->src, comma, 1, "'%.*s' takes two arguments",
+                            c->len, c->name);
+    }
+    if (kind != CALL_INT)
         return HL_OK;
-    }
-    int st = hl_lex_next(&r->lx, r->err);
-    if (st != HL_OK) {
-        if (r->err)
-            r->err->src = r->src;
-        return st;
-    }
-    r->kind = (int)r->lx.tok.kind, r->pos = r->lx.tok.pos, r->len = r->lx.tok.len;
+    const hl_expr *v = c->args[0];
+    if (v->kind != HL_SYM || v->name[0] == '#')
+        return hl_error_set(r->err, HL_EPARSE, r->src, c->arg_pos[0], 1,
+                            "expected the integration variable");
+    const call *inner = int_inside(r, c->pos, c->end);
+    if (inner != NULL)
+        return hl_error_set(r->err, HL_EUNSUP, r->src, inner->pos, 3,
+                            "an int() inside an int() is not supported");
     return HL_OK;
 }
 
-static int fail(rd *r, int pos, int len, const char *fmt, const char *arg)
+/* hl_parse_ext's call: check c, and stand a placeholder "#k" for it. */
+static hl_status language_call(const hl_expr **out, void *arg, const hl_parse_call *c,
+                               hl_error *err)
 {
-    return hl_error_set(r->err, HL_EPARSE, r->src, pos, len > 0 ? len : 1, fmt, arg);
+    rd *r = arg;
+    (void)err; /* r->err is the same */
+    int kind = call_kind_of(c->name, c->len), st = check_call(r, kind, c);
+    if (st != HL_OK)
+        return st;
+    r->calls = hl_xrealloc(r->calls, (size_t)(r->ncalls + 1) * sizeof *r->calls);
+    r->calls[r->ncalls] = (call){kind, c->args[0], c->args[1], c->pos, c->end};
+    char name[24];
+    snprintf(name, sizeof name, "#%d", r->ncalls);
+    *out = hl_sym(r->tree, name);
+    hl_memo_put(&r->call_of, *out)->i = r->ncalls++;
+    return HL_OK;
 }
 
-static int expect(rd *r, int kind, const char *what)
+/* ---- values of the tree's nodes ----------------------------------------- */
+
+static int visit(void *arg, const hl_expr *e);
+
+static int walk_tree(walk *w, const hl_expr *e, const vv **out)
 {
-    if (r->kind != kind) {
-        char t[48];
-        hl_token tk = {(hl_tok_kind)(r->kind == TK_COMMA ? HL_TK_NAME : r->kind), r->pos, r->len};
-        hl_lex_text(t, sizeof t, r->src, tk);
-        char msg[96];
-        snprintf(msg, sizeof msg, "expected %s, found '%%s'", what);
-        return fail(r, r->pos, r->len, msg, t);
-    }
-    return next(r);
+    int st = hl_expr_postorder(&e, 1, visit, w);
+    if (st == HL_OK)
+        *out = hl_memo_get(&w->values, e)->p;
+    return st;
 }
 
-static int name_is(const rd *r, int pos, int len, const char *s)
-{
-    return (int)strlen(s) == len && memcmp(r->src + pos, s, (size_t)len) == 0;
-}
-
-/* ---- combining values --------------------------------------------------- */
-
-typedef const hl_expr *(*binop)(hl_pool *, const hl_expr *, const hl_expr *);
-
-static vv combine(rd *r, binop op, const vv *a, const vv *b)
-{
-    vv out = {a->vec || b->vec, NULL};
-    int n = dim(r, &out);
-    out.c = alloc_c(r, n);
-    for (int j = 0; j < n; j++)
-        out.c[j] = op(r->pool, comp(a, j), comp(b, j));
-    return out;
-}
-
-static vv scalar(rd *r, const hl_expr *e)
-{
-    vv out = {0, alloc_c(r, 1)};
-    out.c[0] = e;
-    return out;
-}
-
-static vv vector_of(rd *r, const hl_expr *const *c)
-{
-    vv out = {1, alloc_c(r, r->N)};
-    for (int j = 0; j < r->N; j++)
-        out.c[j] = c[j];
-    return out;
-}
-
-/* expression e of the system's point, at the point (a, b) */
+/* Expression e of the system's point, at the point (a, b). */
 static const hl_expr *at_point(rd *r, const hl_expr *e, const vv *a, const vv *b)
 {
     int N = r->N;
@@ -149,246 +195,210 @@ static const hl_expr *at_point(rd *r, const hl_expr *e, const vv *a, const vv *b
     return e;
 }
 
-/* ---- grammar --------------------------------------------------------------- */
-
-static int expr(rd *r, vv *out);
-
-/* '(' a ',' b ')' after a two-argument function's name */
-static int two_args(rd *r, vv *a, vv *b)
+/* int(var, f): f walked in a context of its own, then each component's
+ * integral over s. */
+static int integral(walk *w, const call *c, const vv **out)
 {
-    int st = expect(r, HL_TK_LPAREN, "'('");
-    if (st == HL_OK)
-        st = expr(r, a);
-    if (st == HL_OK)
-        st = expect(r, TK_COMMA, "','");
-    if (st == HL_OK)
-        st = expr(r, b);
-    if (st == HL_OK)
-        st = expect(r, HL_TK_RPAREN, "')'");
-    return st;
-}
-
-static int need_H(rd *r, int pos, int len)
-{
-    if (hl_system_has_H(r->sys))
-        return HL_OK;
-    char nm[40];
-    snprintf(nm, sizeof nm, "%.*s", len > 32 ? 32 : len, r->src + pos);
-    return hl_error_set(r->err, HL_EINVAL, r->src, pos, len, "'%s' needs a Hamiltonian", nm);
-}
-
-static int call(rd *r, vv *out, int pos, int len)
-{
-    int st;
-    vv a, b;
-    if (name_is(r, pos, len, "Hq") || name_is(r, pos, len, "Hp")) {
-        int wrt_p = name_is(r, pos, len, "Hp");
-        if ((st = need_H(r, pos, len)) != HL_OK || (st = two_args(r, &a, &b)) != HL_OK)
-            return st;
-        out->vec = 1;
-        out->c = alloc_c(r, r->N);
-        for (int j = 0; j < r->N; j++)
-            out->c[j] = at_point(r, scheme_dH(r->sys, j, wrt_p), &a, &b);
-        return HL_OK;
-    }
-    if (name_is(r, pos, len, "H")) {
-        if ((st = need_H(r, pos, len)) != HL_OK || (st = two_args(r, &a, &b)) != HL_OK)
-            return st;
-        *out = scalar(r, at_point(r, hl_system_H_expr(r->sys), &a, &b));
-        return HL_OK;
-    }
-    if (name_is(r, pos, len, "dot")) {
-        if ((st = two_args(r, &a, &b)) != HL_OK)
-            return st;
-        const hl_expr *s = NULL;
-        for (int j = 0; j < r->N; j++) {
-            const hl_expr *t = hl_mul(r->pool, comp(&a, j), comp(&b, j));
-            s = s ? hl_add(r->pool, s, t) : t;
-        }
-        *out = scalar(r, s);
-        return HL_OK;
-    }
-    if (name_is(r, pos, len, "int")) {
-        if (r->in_int)
-            return hl_error_set(r->err, HL_EUNSUP, r->src, pos, len,
-                                "an int() inside an int() is not supported");
-        if ((st = expect(r, HL_TK_LPAREN, "'('")) != HL_OK)
-            return st;
-        if (r->kind != HL_TK_NAME)
-            return fail(r, r->pos, r->len, "expected the integration variable%s", "");
-        r->svar = r->src + r->pos;
-        r->svar_len = r->len;
-        if ((st = next(r)) != HL_OK || (st = expect(r, TK_COMMA, "','")) != HL_OK)
-            return st;
-        r->in_int = 1;
-        st = expr(r, &a);
-        r->in_int = 0;
-        if (st == HL_OK)
-            st = expect(r, HL_TK_RPAREN, "')'");
-        if (st != HL_OK)
-            return st;
-        out->vec = a.vec;
-        out->c = alloc_c(r, dim(r, &a));
-        for (int j = 0; j < dim(r, &a); j++)
-            out->c[j] = sb_integral(r->b, a.c[j]);
-        return HL_OK;
-    }
-    int f = hl_fun_lookup(r->src + pos, len);
-    if (f < 0) {
-        char nm[40];
-        snprintf(nm, sizeof nm, "%.*s", len > 32 ? 32 : len, r->src + pos);
-        return hl_error_set(r->err, HL_EINVAL, r->src, pos, len,
-                            "unknown function '%s' (the scheme language has Hq, Hp, H, dot, "
-                            "int and the elementary functions)",
-                            nm);
-    }
-    if ((st = expect(r, HL_TK_LPAREN, "'('")) != HL_OK || (st = expr(r, &a)) != HL_OK ||
-        (st = expect(r, HL_TK_RPAREN, "')'")) != HL_OK)
+    rd *r = w->r;
+    walk inner = {r, {0}, c->a->name};
+    hl_memo_init(&inner.values);
+    const vv *f;
+    int st = walk_tree(&inner, c->b, &f);
+    hl_memo_clear(&inner.values);
+    if (st != HL_OK)
         return st;
-    out->vec = a.vec;
-    out->c = alloc_c(r, dim(r, &a));
-    for (int j = 0; j < dim(r, &a); j++)
-        out->c[j] = hl_call(r->pool, (hl_fun)f, a.c[j]);
+    vv *v = new_value(r, f->vec);
+    for (int j = 0; j < dim(r, f); j++)
+        v->c[j] = sb_integral(r->b, f->c[j]);
+    *out = v;
     return HL_OK;
 }
 
-static int stage_index(const rd *r, int pos, int len)
+static int call_value(walk *w, const call *c, const vv **out)
+{
+    rd *r = w->r;
+    if (c->kind == CALL_INT)
+        return integral(w, c, out);
+    const vv *a, *b;
+    int st = walk_tree(w, c->a, &a);
+    if (st == HL_OK)
+        st = walk_tree(w, c->b, &b);
+    if (st != HL_OK)
+        return st;
+    vv *v = new_value(r, c->kind == CALL_HQ || c->kind == CALL_HP);
+    if (c->kind == CALL_H) {
+        v->c[0] = at_point(r, hl_system_H_expr(r->sys), a, b);
+    } else if (c->kind == CALL_DOT) {
+        v->c[0] = NULL;
+        for (int j = 0; j < r->N; j++) {
+            const hl_expr *t = hl_mul(r->pool, comp(a, j), comp(b, j));
+            v->c[0] = v->c[0] ? hl_add(r->pool, v->c[0], t) : t;
+        }
+    } else {
+        for (int j = 0; j < r->N; j++)
+            v->c[j] = at_point(r, scheme_dH(r->sys, j, c->kind == CALL_HP), a, b);
+    }
+    *out = v;
+    return HL_OK;
+}
+
+static const vv *scalar(rd *r, const hl_expr *e)
+{
+    vv *v = new_value(r, 0);
+    v->c[0] = e;
+    return v;
+}
+
+static const vv *vector_of(rd *r, const hl_expr *const *c)
+{
+    vv *v = new_value(r, 1);
+    memcpy(v->c, c, (size_t)r->N * sizeof *c);
+    return v;
+}
+
+static int stage_index(const rd *r, const char *name, int len)
 {
     for (int i = 0; i < r->nst; i++)
-        if ((int)strlen(r->st[i].name) == len && memcmp(r->st[i].name, r->src + pos, (size_t)len) == 0)
+        if (name_is(name, len, r->st[i].name))
             return i;
     return -1;
 }
 
-static int name(rd *r, vv *out, int pos, int len)
+/* Where the walk's unknown name appears first in the item being walked,
+ * skipping the integrals in which it is the variable. */
+static int occurrence(const rd *r, const char *name)
+{
+    int from = r->item_pos;
+    for (;;) {
+        int at = hl_symbol_pos(r->src + from, name);
+        if (at < 0)
+            return -1;
+        at += from;
+        int bound = -1;
+        for (int i = 0; i < r->ncalls && bound < 0; i++) {
+            const call *c = &r->calls[i];
+            if (c->kind == CALL_INT && c->pos < at && at < c->end && strcmp(c->a->name, name) == 0)
+                bound = c->end;
+        }
+        if (bound < 0)
+            return at;
+        from = bound + 1;
+    }
+}
+
+/* The phase variables, the step and the stages (vectors or scalars). */
+static const vv *frame_name(rd *r, const char *name)
 {
     const scheme_frame *f = r->f;
-    int i;
-    if (r->in_int && len == r->svar_len && memcmp(r->src + pos, r->svar, (size_t)len) == 0) {
+    int len = (int)strlen(name), i;
+    if (strcmp(name, "q") == 0 || strcmp(name, "p") == 0)
+        return vector_of(r, name[0] == 'q' ? f->q : f->p);
+    if (strcmp(name, "Q") == 0 || strcmp(name, "P") == 0)
+        return vector_of(r, name[0] == 'Q' ? r->Qs : r->Ps);
+    if (strcmp(name, f->D_word) == 0)
+        return scalar(r, f->D);
+    if ((i = stage_index(r, name, len)) >= 0) {
+        vv *v = new_value(r, 1);
+        for (int j = 0; j < r->N; j++)
+            v->c[j] = sb_usym(r->b, r->st[i].u0 + j);
+        return v;
+    }
+    return NULL;
+}
+
+static int symbol_value(walk *w, const hl_expr *e, const vv **out)
+{
+    rd *r = w->r;
+    const hl_memo_val *k = hl_memo_get(&r->call_of, e);
+    if (k != NULL)
+        return call_value(w, &r->calls[k->i], out);
+    if (w->var != NULL && strcmp(e->name, w->var) == 0) {
         *out = scalar(r, hl_sym(r->pool, HL_SCHEME_S));
         return HL_OK;
     }
-    if (name_is(r, pos, len, "q") || name_is(r, pos, len, "p")) {
-        *out = vector_of(r, name_is(r, pos, len, "q") ? f->q : f->p);
+    if ((*out = frame_name(r, e->name)) != NULL)
         return HL_OK;
-    }
-    if (name_is(r, pos, len, "Q") || name_is(r, pos, len, "P")) {
-        *out = vector_of(r, name_is(r, pos, len, "Q") ? r->Qs : r->Ps);
-        return HL_OK;
-    }
-    if (name_is(r, pos, len, f->D_word)) {
-        *out = scalar(r, f->D);
-        return HL_OK;
-    }
-    if (name_is(r, pos, len, "pi")) {
-        *out = scalar(r, hl_pi(r->pool));
-        return HL_OK;
-    }
-    if ((i = stage_index(r, pos, len)) >= 0) {
-        out->vec = 1;
-        out->c = alloc_c(r, r->N);
-        for (int j = 0; j < r->N; j++)
-            out->c[j] = sb_usym(r->b, r->st[i].u0 + j);
-        return HL_OK;
-    }
-    for (i = 0; i < hl_system_nparams(r->sys); i++)
-        if (name_is(r, pos, len, hl_system_param(r->sys, i))) {
-            *out = scalar(r, hl_sym(r->pool, hl_system_param(r->sys, i)));
+    for (int i = 0; i < hl_system_nparams(r->sys); i++)
+        if (strcmp(e->name, hl_system_param(r->sys, i)) == 0) {
+            *out = scalar(r, hl_sym(r->pool, e->name));
             return HL_OK;
         }
-    for (i = 0; i < hl_system_nset(r->sys); i++)
-        if (name_is(r, pos, len, hl_system_set_name(r->sys, i))) {
+    for (int i = 0; i < hl_system_nset(r->sys); i++)
+        if (strcmp(e->name, hl_system_set_name(r->sys, i)) == 0) {
             *out = scalar(r, hl_system_set_value(r->sys, i));
             return HL_OK;
         }
-    char nm[40];
-    snprintf(nm, sizeof nm, "%.*s", len > 32 ? 32 : len, r->src + pos);
-    return hl_error_set(r->err, HL_EINVAL, r->src, pos, len,
-                        "unknown name '%s' (a scheme knows q, p, Q, P, D, its stages, the "
+    int at = occurrence(r, e->name);
+    return hl_error_set(r->err, HL_EINVAL, r->src, at, at >= 0 ? (int)strlen(e->name) : 0,
+                        "unknown name '%.32s' (a scheme knows q, p, Q, P, D, its stages, the "
                         "system's parameters, and the integration variable inside int)",
-                        nm);
+                        e->name);
 }
 
-static int unary(rd *r, vv *out);
-
-static int atom(rd *r, vv *out)
+/* The componentwise value of an operator or function node. */
+static const vv *apply(rd *r, const hl_expr *e, const vv *a, const vv *b)
 {
-    int st, pos = r->pos, len = r->len;
-    switch (r->kind) {
-    case HL_TK_NUM:
-        *out = scalar(r, hl_num_fmpq(r->pool, r->lx.num));
-        return next(r);
-    case HL_TK_LPAREN:
-        if ((st = next(r)) != HL_OK || (st = expr(r, out)) != HL_OK)
-            return st;
-        return expect(r, HL_TK_RPAREN, "')'");
-    case HL_TK_NAME:
-        if ((st = next(r)) != HL_OK)
-            return st;
-        if (r->kind == HL_TK_LPAREN)
-            return call(r, out, pos, len);
-        return name(r, out, pos, len);
-    default:
-        return expect(r, -1, "a number, a name or '('");
-    }
-}
-
-static int power(rd *r, vv *out)
-{
-    int st = atom(r, out);
-    if (st != HL_OK || r->kind != HL_TK_POW)
-        return st;
-    vv e;
-    if ((st = next(r)) != HL_OK || (st = unary(r, &e)) != HL_OK)
-        return st;
-    *out = combine(r, hl_pow, out, &e);
-    return HL_OK;
-}
-
-static int unary(rd *r, vv *out)
-{
-    if (r->kind == HL_TK_MINUS || r->kind == HL_TK_PLUS) {
-        int neg = r->kind == HL_TK_MINUS, st;
-        if ((st = next(r)) != HL_OK || (st = unary(r, out)) != HL_OK)
-            return st;
-        if (neg) {
-            vv v = {out->vec, alloc_c(r, dim(r, out))};
-            for (int j = 0; j < dim(r, out); j++)
-                v.c[j] = hl_neg(r->pool, out->c[j]);
-            *out = v;
+    vv *v = new_value(r, a->vec || (b != NULL && b->vec));
+    for (int j = 0; j < dim(r, v); j++) {
+        const hl_expr *x = comp(a, j), *y = b != NULL ? comp(b, j) : NULL;
+        switch (e->kind) {
+        case HL_NEG:
+            v->c[j] = hl_neg(r->pool, x);
+            break;
+        case HL_ADD:
+            v->c[j] = hl_add(r->pool, x, y);
+            break;
+        case HL_SUB:
+            v->c[j] = hl_sub(r->pool, x, y);
+            break;
+        case HL_MUL:
+            v->c[j] = hl_mul(r->pool, x, y);
+            break;
+        case HL_DIV:
+            v->c[j] = hl_div(r->pool, x, y);
+            break;
+        case HL_POW:
+            v->c[j] = hl_pow(r->pool, x, y);
+            break;
+        default:
+            v->c[j] = y != NULL ? hl_call2(r->pool, e->fun, x, y) : hl_call(r->pool, e->fun, x);
         }
+    }
+    return v;
+}
+
+static const vv *known(const walk *w, const hl_expr *e)
+{
+    return e != NULL ? hl_memo_get(&w->values, e)->p : NULL;
+}
+
+/* hl_expr_postorder's visit: the value of e from its operands'. */
+static int visit(void *arg, const hl_expr *e)
+{
+    walk *w = arg;
+    if (hl_memo_get(&w->values, e) != NULL) /* met in an enclosing walk */
         return HL_OK;
+    const vv *v = NULL;
+    int st = HL_OK;
+    switch (e->kind) {
+    case HL_NUM:
+        v = scalar(w->r, hl_num_fmpq(w->r->pool, e->num));
+        break;
+    case HL_PI:
+        v = scalar(w->r, hl_pi(w->r->pool));
+        break;
+    case HL_SYM:
+        st = symbol_value(w, e, &v);
+        break;
+    default:
+        v = apply(w->r, e, known(w, e->a), known(w, e->b));
     }
-    return power(r, out);
-}
-
-static int term(rd *r, vv *out)
-{
-    int st = unary(r, out);
-    while (st == HL_OK && (r->kind == HL_TK_STAR || r->kind == HL_TK_SLASH)) {
-        binop op = r->kind == HL_TK_STAR ? hl_mul : hl_div;
-        vv b;
-        if ((st = next(r)) != HL_OK || (st = unary(r, &b)) != HL_OK)
-            return st;
-        *out = combine(r, op, out, &b);
-    }
+    if (st == HL_OK)
+        hl_memo_put(&w->values, e)->p = (void *)v;
     return st;
 }
 
-static int expr(rd *r, vv *out)
-{
-    int st = term(r, out);
-    while (st == HL_OK && (r->kind == HL_TK_PLUS || r->kind == HL_TK_MINUS)) {
-        binop op = r->kind == HL_TK_PLUS ? hl_add : hl_sub;
-        vv b;
-        if ((st = next(r)) != HL_OK || (st = term(r, &b)) != HL_OK)
-            return st;
-        *out = combine(r, op, out, &b);
-    }
-    return st;
-}
-
-/* ---- equations ------------------------------------------------------------ */
+/* ---- items ---------------------------------------------------------------- */
 
 /* Which vector unknown is v exactly (Q, P or a stage): index of its first
  * component's unknown, or -1. */
@@ -410,79 +420,96 @@ static int whole_unknown(rd *r, const vv *v)
     return u0;
 }
 
-static int item(rd *r)
+static int item(rd *r, walk *w, const hl_eqn *it)
 {
-    vv l, rr;
-    int pos = r->pos, st = expr(r, &l);
+    const vv *l, *rr;
+    r->item_pos = it->pos;
+    int st = walk_tree(w, it->lhs, &l);
+    if (st == HL_OK)
+        st = walk_tree(w, it->rhs, &rr);
     if (st != HL_OK)
         return st;
-    if (r->kind != HL_TK_EQ)
-        return expect(r, HL_TK_EQ, "'='");
-    if ((st = next(r)) != HL_OK || (st = expr(r, &rr)) != HL_OK)
-        return st;
-    if (l.vec != rr.vec && r->N != 1)
-        return hl_error_set(r->err, HL_EINVAL, r->src, pos, 1,
+    if (l->vec != rr->vec && r->N != 1)
+        return hl_error_set(r->err, HL_EINVAL, r->src, it->pos, 1,
                             "one side of this equation is a vector and the other a scalar");
-    int u0 = whole_unknown(r, &l), n = l.vec || rr.vec ? r->N : 1;
+    int u0 = whole_unknown(r, l), n = l->vec || rr->vec ? r->N : 1;
     for (int j = 0; j < n; j++)
-        sb_eq(r->b, comp(&l, j), comp(&rr, j), u0 >= 0 ? u0 + j : -1);
+        sb_eq(r->b, comp(l, j), comp(rr, j), u0 >= 0 ? u0 + j : -1);
     return HL_OK;
 }
 
-static int reserved(const rd *r, int pos, int len)
+static int reserved(const rd *r, const char *name)
 {
-    static const char *const words[] = {"q", "p", "Q", "P", "pi", "H", "Hq", "Hp",
-                                        "dot", "int"};
+    static const char *const words[] = {"q", "p", "Q", "P", "pi", "H", "Hq", "Hp", "dot", "int"};
     for (size_t i = 0; i < sizeof words / sizeof *words; i++)
-        if (name_is(r, pos, len, words[i]))
+        if (strcmp(name, words[i]) == 0)
             return 1;
-    if (name_is(r, pos, len, r->f->D_word))
-        return 1;
-    return hl_fun_lookup(r->src + pos, len) >= 0;
+    return strcmp(name, r->f->D_word) == 0 || hl_fun_lookup(name, (int)strlen(name)) >= 0;
 }
 
-/* First pass: every item "name = ..." with a name that is not reserved
- * introduces a stage (N unknowns). */
-static int find_stages(rd *r)
+/* Is the item "name = ...", written with the bare name (not "(name) = ")? */
+static const char *stage_name(const rd *r, const hl_eqn *it)
 {
-    int st, at_start = 1;
+    if (it->lhs->kind != HL_SYM || reserved(r, it->lhs->name))
+        return NULL;
+    size_t n = strlen(it->lhs->name);
+    return strncmp(r->src + it->pos, it->lhs->name, n) == 0 ? it->lhs->name : NULL;
+}
+
+/* Every item "name = ..." with a name that is not reserved introduces a
+ * stage (N unknowns), in the order of the text. */
+static int find_stages(rd *r, const hl_eqn *items, int n)
+{
     hl_buf nb;
     hl_buf_init(&nb);
-    while ((st = next(r)) == HL_OK && r->kind != HL_TK_EOF) {
-        if (at_start && r->kind == HL_TK_NAME) {
-            int pos = r->pos, len = r->len;
-            if ((st = next(r)) != HL_OK)
-                break;
-            if (r->kind == HL_TK_EQ && !reserved(r, pos, len)) {
-                if (stage_index(r, pos, len) >= 0) {
-                    char nm[40];
-                    snprintf(nm, sizeof nm, "%.*s", len > 32 ? 32 : len, r->src + pos);
-                    st = hl_error_set(r->err, HL_EINVAL, r->src, pos, len,
-                                      "stage '%s' is defined twice", nm);
-                    break;
-                }
-                r->st = hl_xrealloc(r->st, (size_t)(r->nst + 1) * sizeof *r->st);
-                stage *sg = &r->st[r->nst++];
-                hl_buf_putn(&nb, r->src + pos, (size_t)len);
-                sg->name = hl_buf_take(&nb);
-                sg->u0 = r->b->s->m;
-                for (int j = 0; j < r->N; j++) {
-                    hl_buf_printf(&nb, "%s%s#%d", r->f->prefix, sg->name, j + 1);
-                    char *res = hl_buf_take(&nb);
-                    if (r->N == 1)
-                        hl_buf_printf(&nb, "%s%s", r->f->prefix, sg->name);
-                    else
-                        hl_buf_printf(&nb, "%s%s[%d]", r->f->prefix, sg->name, j + 1);
-                    char *disp = hl_buf_take(&nb);
-                    sb_unknown(r->b, res, disp, NULL);
-                    free(res);
-                    free(disp);
-                }
-            }
+    int st = HL_OK;
+    for (int i = 0; i < n && st == HL_OK; i++) {
+        const char *name = stage_name(r, &items[i]);
+        int len = name ? (int)strlen(name) : 0;
+        if (name == NULL)
+            continue;
+        if (stage_index(r, name, len) >= 0) {
+            st = name_error(r, HL_EINVAL, items[i].pos, len, "stage '%s' is defined twice");
+            break;
         }
-        at_start = r->kind == HL_TK_SEMI;
+        r->st = hl_xrealloc(r->st, (size_t)(r->nst + 1) * sizeof *r->st);
+        stage *sg = &r->st[r->nst++];
+        sg->name = hl_xstrdup(name);
+        sg->u0 = r->b->s->m;
+        for (int j = 0; j < r->N; j++) {
+            hl_buf_printf(&nb, "%s%s#%d", r->f->prefix, name, j + 1);
+            char *res = hl_buf_take(&nb);
+            if (r->N == 1)
+                hl_buf_printf(&nb, "%s%s", r->f->prefix, name);
+            else
+                hl_buf_printf(&nb, "%s%s[%d]", r->f->prefix, name, j + 1);
+            char *disp = hl_buf_take(&nb);
+            sb_unknown(r->b, res, disp, NULL);
+            free(res);
+            free(disp);
+        }
     }
     hl_buf_clear(&nb);
+    return st;
+}
+
+/* Parse the text, find its stages, and walk its items. */
+static int read_items(rd *r)
+{
+    int max = 1;
+    for (const char *c = r->src; *c; c++)
+        max += *c == ';';
+    hl_eqn *items = hl_xmalloc((size_t)max * sizeof *items);
+    hl_parse_ext ext = {language_call, r, 1};
+    int n = 0, st = hl_parse_list_ext(items, max, &n, r->tree, r->src, &ext, r->err);
+    if (st == HL_OK)
+        st = find_stages(r, items, n);
+    walk w = {r, {0}, NULL};
+    hl_memo_init(&w.values);
+    for (int i = 0; i < n && st == HL_OK; i++)
+        st = item(r, &w, &items[i]);
+    hl_memo_clear(&w.values);
+    free(items);
     return st;
 }
 
@@ -495,6 +522,7 @@ int scheme_read(sb *b, const char *text, const scheme_frame *f, hl_error *err)
     r.f = f;
     r.sys = b->sys;
     r.pool = b->pool;
+    r.tree = hl_pool_new();
     r.N = hl_system_ndof(b->sys);
     r.err = err;
     r.Qs = hl_xmalloc((size_t)(2 * r.N) * sizeof *r.Qs);
@@ -503,27 +531,17 @@ int scheme_read(sb *b, const char *text, const scheme_frame *f, hl_error *err)
         r.Qs[j] = sb_usym(b, f->Qu[j]);
         r.Ps[j] = sb_usym(b, f->Pu[j]);
     }
-    hl_lex_init(&r.lx, text, 0);
-    int st = find_stages(&r);
-    hl_lex_clear(&r.lx);
-    if (st == HL_OK) {
-        hl_lex_init(&r.lx, text, 1);
-        st = next(&r);
-        while (st == HL_OK && r.kind != HL_TK_EOF) {
-            st = item(&r);
-            if (st == HL_OK && r.kind == HL_TK_SEMI)
-                st = next(&r);
-            else if (st == HL_OK && r.kind != HL_TK_EOF)
-                st = expect(&r, HL_TK_SEMI, "';' or the end");
-        }
-        hl_lex_clear(&r.lx);
-    }
+    hl_memo_init(&r.call_of);
+    int st = read_items(&r);
+    hl_memo_clear(&r.call_of);
     for (int i = 0; i < r.narena; i++)
         free(r.arena[i]);
     for (int i = 0; i < r.nst; i++)
         free(r.st[i].name);
     free(r.arena);
     free(r.st);
+    free(r.calls);
     free(r.Qs);
+    hl_pool_free(r.tree);
     return st;
 }
