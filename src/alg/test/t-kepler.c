@@ -32,7 +32,7 @@ static int rd(hl_alg *r, hl_pool *pool, const char *s)
 {
     const hl_expr *e;
     hl_error err;
-    int st = hl_parse(&e, pool, s, &err);
+    hl_status st = hl_parse(&e, pool, s, &err);
     return st == HL_OK ? hl_alg_from_expr(r, e, ctx, &err) : st;
 }
 

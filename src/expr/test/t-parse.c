@@ -65,7 +65,8 @@ static const struct {
 
 static const struct {
     const char *src;
-    int status, pos;
+    hl_status status;
+    int pos;
     const char *msg; /* exact message */
 } bad[] = {
     {"x +", HL_EPARSE, 3, "expected an expression after '+'"},
