@@ -122,6 +122,13 @@ typedef struct cli_begin_spec {
 int cli_begin(char ***av, cli_opts *o, hl_system **sys, int argc, char **argv,
               const cli_command *cmd, const cli_begin_spec *spec, void *arg);
 
+/* The checks every scheme-running command (run, errors) makes first: -H
+ * given (else "missing -H: <why_H>"), no positional argument, exactly one
+ * of --scheme, --map and --equations.  -1 to go on, or 2 after the usage
+ * message. */
+int cli_check_scheme_source(const cli_opts *o, const char *scheme, const char *equations,
+                            const char *why_H, const cli_command *cmd);
+
 /* Print an error with its formula and a caret under err->pos; returns 2
  * (CLI_INTERRUPTED for HL_ESTOP: the job was interrupted). */
 int cli_fail(const hl_error *err);

@@ -120,15 +120,9 @@ static int adaptive(const run_opts *r);
 static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
 {
     run_opts *r = arg;
-    int rc = -1;
-    if (o->H == NULL)
-        return cli_usage(cmd, "missing -H: a run needs a Hamiltonian");
-    if (o->nargs > 0)
-        return cli_usage(cmd, "unexpected argument '%s'", o->args[0]);
-    int nsrc = (r->scheme != NULL) + (o->map != NULL) + (r->equations != NULL);
-    if (nsrc != 1)
-        return cli_usage(cmd, nsrc == 0 ? "give a scheme: --scheme NAME, --map or --equations"
-                                        : "give only one of --scheme, --map and --equations");
+    int rc = cli_check_scheme_source(o, r->scheme, r->equations, "a run needs a Hamiltonian", cmd);
+    if (rc >= 0)
+        return rc;
     if (r->digits_s != NULL) {
         if ((rc = parse_double(&r->digits, r->digits_s, "--digits", cmd)) >= 0)
             return rc;
