@@ -41,8 +41,7 @@ void hl_analysis_opts_default(hl_analysis_opts *o)
 static int fields_and_leading(hl_vfields *e, hl_errfield *F, int *have_F, const hl_series *psi,
                               const hl_analysis *A, long budget, hl_error *err)
 {
-    int st = budget > 0 ? hl_vfields_compute_bounded(e, psi, A->sys, A->n, budget, err)
-                        : hl_vfields_compute(e, psi, A->sys, A->n, err);
+    int st = hl_vfields_compute_bounded(e, psi, A->sys, A->n, budget > 0 ? budget : 0, err);
     if (st == HL_OK && e->checked && !e->agree)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
                             "internal error: v_%d computed two ways (expansion, K(D)) disagree",

@@ -41,40 +41,27 @@ static const char *const REL_NAMES[NREL] = {"explicit Euler", "implicit midpoint
 static const char EQ_EULER[] = "(X-x)/D = p; (P-p)/D = -x";
 static const char EQ_DG[] = "(X-x)/D = (P^2-p^2)/(2*(P-p)); (P-p)/D = -(X^2-x^2)/(2*(X-x))";
 
+/* A scheme and its analysis (which borrows it). */
+typedef struct analysed {
+    hl_scheme *s;
+    hl_analysis *a;
+} analysed;
+
 struct hl_paper_work {
     hl_system *osc, *lin2, *cub;
     hl_alg *g;                          /* generator, osc */
     hl_alg *exact_map, *euler_map, *dg_map; /* closed maps, osc */
-    hl_series *psi_exact, *psi_euler, *psi_dg, *psi_cub[NREL];
-    hl_vfields e_exact, e_euler, e_dg, e_cub[NREL];
-    int have_e;      /* bit i: e_{exact,euler,dg,cub} filled */
-    hl_alg *g_cub;   /* generator, cub */
-    hl_series *K_cub[NREL];
+    /* the library's analysis of each scheme (hl_analysis_compute): psi, the
+     * v_k two ways, K's series (cub), the leading field and tau (dg) */
+    analysed exact, euler, dg, rel[NREL]; /* rel: on cub */
+    hl_alg *g_cub;                        /* generator, cub */
     hl_alg *psiT_cub[NREL]; /* the cubic system's psi truncated after D^NCUB, as elements */
-    int have_cub;           /* e_cub[0 .. have_cub-1] filled */
     char *euler_map_how, *dg_map_how;
 };
 
 static const char *const NAMES[2] = {"x", "p"};
 
 /* ---- small helpers ------------------------------------------------------ */
-
-static hl_series *series_vec(int m, const hl_alg_ctx *ctx)
-{
-    hl_series *s = hl_xcalloc((size_t)m, sizeof *s);
-    for (int i = 0; i < m; i++)
-        hl_series_init(&s[i], 0, ctx);
-    return s;
-}
-
-static void series_vec_free(hl_series *s, int m, const hl_alg_ctx *ctx)
-{
-    if (s == NULL)
-        return;
-    for (int i = 0; i < m; i++)
-        hl_series_clear(&s[i], ctx);
-    free(s);
-}
 
 /* "a; b" -> out[0], out[1] (or one component when there is no ';'). */
 static int read_comps(hl_alg *out, int ncomp, hl_system *sys, const char *text, hl_error *err)
@@ -210,20 +197,31 @@ static int map_matches_series(const hl_alg *map, const hl_series *psi, int n, hl
     return ok;
 }
 
-static int expand_catalog(hl_series **psi, hl_vfields *e, const char *name, const char *text,
+/* The scheme (a catalog name, else its text) analysed to v_n by the
+ * library, with the parts asked for (HL_ANALYSIS_*); the v_k always two
+ * ways, without a budget. */
+static int expand_catalog(analysed *out, const char *name, const char *text, unsigned parts,
                           hl_system *sys, int n, hl_error *err)
 {
-    hl_scheme *s = NULL;
-    memset(e, 0, sizeof *e);
-    int st = name != NULL ? hl_scheme_new(&s, name, 0, sys, err)
-                          : hl_scheme_from_text(&s, text, sys, err);
-    *psi = series_vec(2, hl_system_ctx(sys));
+    hl_analysis_opts o;
+    hl_analysis_opts_default(&o);
+    o.order = n;
+    o.parts = parts;
+    o.invariants_degree = 0;
+    o.K_route_budget = 0;
+    int st = name != NULL ? hl_scheme_new(&out->s, name, 0, sys, err)
+                          : hl_scheme_from_text(&out->s, text, sys, err);
     if (st == HL_OK)
-        st = hl_scheme_expand(*psi, s, n + 1, err);
-    if (st == HL_OK)
-        st = hl_vfields_compute(e, *psi, sys, n, err);
-    hl_scheme_free(s);
+        st = hl_analysis_compute(&out->a, &o, out->s, sys, err);
     return st;
+}
+
+static void analysed_clear(analysed *x)
+{
+    hl_analysis_free(x->a);
+    hl_scheme_free(x->s);
+    x->a = NULL;
+    x->s = NULL;
 }
 
 static int new_system(hl_system **sys, const char *H, const char *pairs, hl_error *err)
@@ -240,25 +238,16 @@ static void work_clear(struct hl_paper_work *w)
         hl_alg_vec_free(w->exact_map, 2, ctx);
         hl_alg_vec_free(w->euler_map, 2, ctx);
         hl_alg_vec_free(w->dg_map, 2, ctx);
-        series_vec_free(w->psi_exact, 2, ctx);
-        series_vec_free(w->psi_euler, 2, ctx);
-        series_vec_free(w->psi_dg, 2, ctx);
-        if (w->have_e & 1)
-            hl_vfields_clear(&w->e_exact, w->osc);
-        if (w->have_e & 2)
-            hl_vfields_clear(&w->e_euler, w->osc);
-        if (w->have_e & 4)
-            hl_vfields_clear(&w->e_dg, w->osc);
+        analysed_clear(&w->exact);
+        analysed_clear(&w->euler);
+        analysed_clear(&w->dg);
     }
     if (w->cub != NULL) {
         hl_alg_ctx *ctx = hl_system_ctx(w->cub);
         for (int s = 0; s < NREL; s++) {
-            series_vec_free(w->psi_cub[s], 2, ctx);
-            series_vec_free(w->K_cub[s], 2, ctx);
+            analysed_clear(&w->rel[s]);
             hl_alg_vec_free(w->psiT_cub[s], 2, ctx);
         }
-        for (int s = 0; s < w->have_cub; s++)
-            hl_vfields_clear(&w->e_cub[s], w->cub);
         hl_alg_vec_free(w->g_cub, 2, ctx);
     }
     free(w->euler_map_how);
@@ -295,17 +284,9 @@ static int work_init(struct hl_paper_work *w, hl_error *err)
     w->dg_map = hl_alg_vec_new(2, ctx);
     if ((st = hl_generator(&w->g[0], &w->g[1], w->osc, err)) != HL_OK)
         return st;
-    st = expand_catalog(&w->psi_exact, &w->e_exact, "exact-rotation", NULL, w->osc, NV, err);
-    w->have_e |= 1;
-    if (st != HL_OK)
-        return st;
-    st = expand_catalog(&w->psi_euler, &w->e_euler, "paper-euler", NULL, w->osc, NV, err);
-    w->have_e |= 2;
-    if (st != HL_OK)
-        return st;
-    st = expand_catalog(&w->psi_dg, &w->e_dg, "paper-dg", NULL, w->osc, NV, err);
-    w->have_e |= 4;
-    if (st != HL_OK)
+    if ((st = expand_catalog(&w->exact, "exact-rotation", NULL, 0, w->osc, NV, err)) != HL_OK ||
+        (st = expand_catalog(&w->euler, "paper-euler", NULL, 0, w->osc, NV, err)) != HL_OK ||
+        (st = expand_catalog(&w->dg, "paper-dg", NULL, HL_ANALYSIS_TIME, w->osc, NV, err)) != HL_OK)
         return st;
     {
         hl_scheme *s = NULL;
@@ -318,30 +299,22 @@ static int work_init(struct hl_paper_work *w, hl_error *err)
     if ((st = solve_linear_map(w->euler_map, w, EQ_EULER, err)) != HL_OK ||
         (st = solve_linear_map(w->dg_map, w, EQ_DG, err)) != HL_OK)
         return st;
-    w->euler_map_how = map_how(EQ_EULER, map_matches_series(w->euler_map, w->psi_euler, NV + 1,
-                                                            w->osc), "paper-euler");
-    w->dg_map_how = map_how(EQ_DG, map_matches_series(w->dg_map, w->psi_dg, NV + 1, w->osc),
-                            "paper-dg");
+    w->euler_map_how = map_how(
+        EQ_EULER, map_matches_series(w->euler_map, w->euler.a->psi, NV + 1, w->osc), "paper-euler");
+    w->dg_map_how =
+        map_how(EQ_DG, map_matches_series(w->dg_map, w->dg.a->psi, NV + 1, w->osc), "paper-dg");
     /* the nonlinear test system for the relations between K and the v_k */
     hl_alg_ctx *cc = hl_system_ctx(w->cub);
-    int vars[2] = {hl_system_var_q(w->cub, 0), hl_system_var_p(w->cub, 0)};
     w->g_cub = hl_alg_vec_new(2, cc);
     if ((st = hl_generator(&w->g_cub[0], &w->g_cub[1], w->cub, err)) != HL_OK)
         return st;
     for (int s = 0; s < NREL; s++) {
-        st = expand_catalog(&w->psi_cub[s], &w->e_cub[s], NULL, REL_SCHEMES[s], w->cub, NCUB,
-                            err);
-        w->have_cub = s + 1;
+        st = expand_catalog(&w->rel[s], NULL, REL_SCHEMES[s], 0, w->cub, NCUB, err);
         if (st != HL_OK)
             return st;
         w->psiT_cub[s] = hl_alg_vec_new(2, cc);
         for (int i = 0; i < 2; i++)
-            hl_series_to_alg(&w->psiT_cub[s][i], &w->psi_cub[s][i], hl_system_var_D(w->cub), cc);
-        w->K_cub[s] = series_vec(2, cc);
-        st = hl_series_scheme_K(w->K_cub[s], 2, w->psi_cub[s], vars, hl_system_var_D(w->cub), cc,
-                                err);
-        if (st != HL_OK)
-            return st;
+            hl_series_to_alg(&w->psiT_cub[s][i], &w->rel[s].a->psi[i], hl_system_var_D(w->cub), cc);
     }
     return HL_OK;
 }
@@ -376,7 +349,7 @@ static int f_generator(struct hl_paper_work *w, const row_t *r, hl_alg *out, cha
 static int matches_flow(const hl_alg *map, struct hl_paper_work *w, int n)
 {
     hl_alg_ctx *ctx = hl_system_ctx(w->osc);
-    hl_series *s = series_vec(2, ctx);
+    hl_series *s = hl_series_vec_new(2, 0, ctx);
     hl_alg z, l;
     int ok = 1;
     hl_alg_init(&z, ctx);
@@ -389,7 +362,7 @@ static int matches_flow(const hl_alg *map, struct hl_paper_work *w, int n)
     }
     if (ok == 1)
         ok = map_matches_series(map, s, n, w->osc);
-    series_vec_free(s, 2, ctx);
+    hl_series_vec_free(s, 2, ctx);
     hl_alg_clear(&z, ctx);
     hl_alg_clear(&l, ctx);
     return ok;
@@ -457,7 +430,7 @@ static int f_exact_w(struct hl_paper_work *w, const row_t *r, hl_alg *out, char 
         fmpz_fac_ui(fmpq_denref(f), (ulong)k);
         fmpz_one(fmpq_numref(f));
         for (int i = 0; i < 2; i++) {
-            hl_alg_mul(&t, &Dk, &hl_vfields_v(&w->e_exact, k)[i], ctx);
+            hl_alg_mul(&t, &Dk, &hl_vfields_v(&w->exact.a->fields, k)[i], ctx);
             hl_alg_scalar_mul_fmpq(&t, &t, f, ctx);
             hl_alg_add(&out[i], &out[i], &t, ctx);
         }
@@ -467,9 +440,10 @@ static int f_exact_w(struct hl_paper_work *w, const row_t *r, hl_alg *out, char 
     hl_alg_clear(&Dk, ctx);
     hl_buf b;
     hl_buf_init(&b);
-    hl_buf_printf(&b, "sum_{k=2}^{%d} D^k/k! v_k of exact-rotation, v_k computed directly and "
-                      "from K: the two %s",
-                  NV, agree_text(&w->e_exact));
+    hl_buf_printf(&b,
+                  "sum_{k=2}^{%d} D^k/k! v_k of exact-rotation, v_k computed directly and "
+                  "from K: the two %s",
+                  NV, agree_text(&w->exact.a->fields));
     *how = hl_buf_take(&b);
     return HL_OK;
 }
@@ -519,7 +493,7 @@ static int f_K(struct hl_paper_work *w, const hl_alg *map, const hl_series *psi,
         return st;
     /* the same from the series of the catalog scheme (hl_series_scheme_K) */
     hl_alg_ctx *ctx = hl_system_ctx(w->osc);
-    hl_series *K = series_vec(2, ctx);
+    hl_series *K = hl_series_vec_new(2, 0, ctx);
     int vars[2] = {hl_system_var_q(w->osc, 0), hl_system_var_p(w->osc, 0)};
     int ok = hl_series_scheme_K(K, 2, psi, vars, hl_system_var_D(w->osc), ctx, NULL) == HL_OK
                  ? map_matches_series(out, K, K[0].n < K[1].n ? K[0].n : K[1].n, w->osc)
@@ -532,7 +506,7 @@ static int f_K(struct hl_paper_work *w, const hl_alg *map, const hl_series *psi,
                   ok == 1 ? "equals" : ok == 0 ? "DIFFERS from" : "not compared with",
                   K[0].n);
     *how = hl_buf_take(&b);
-    series_vec_free(K, 2, ctx);
+    hl_series_vec_free(K, 2, ctx);
     return HL_OK;
 }
 
@@ -540,14 +514,14 @@ static int f_euler_K(struct hl_paper_work *w, const row_t *r, hl_alg *out, char 
                      hl_error *err)
 {
     (void)r;
-    return f_K(w, w->euler_map, w->psi_euler, out, how, err);
+    return f_K(w, w->euler_map, w->euler.a->psi, out, how, err);
 }
 
 static int f_dg_K(struct hl_paper_work *w, const row_t *r, hl_alg *out, char **how,
                   hl_error *err)
 {
     (void)r;
-    return f_K(w, w->dg_map, w->psi_dg, out, how, err);
+    return f_K(w, w->dg_map, w->dg.a->psi, out, how, err);
 }
 
 static int f_v(const hl_vfields *e, const char *scheme, const char *closed, hl_system *sys,
@@ -567,16 +541,16 @@ static int f_euler_v(struct hl_paper_work *w, const row_t *r, hl_alg *out, char 
                      hl_error *err)
 {
     (void)err;
-    return f_v(&w->e_euler, "paper-euler", "psi = sqrt(1+D^2) R(atan D) (tested in t-formulas)",
-               w->osc, r, out, how);
+    return f_v(&w->euler.a->fields, "paper-euler",
+               "psi = sqrt(1+D^2) R(atan D) (tested in t-formulas)", w->osc, r, out, how);
 }
 
 static int f_dg_v(struct hl_paper_work *w, const row_t *r, hl_alg *out, char **how,
                   hl_error *err)
 {
     (void)err;
-    return f_v(&w->e_dg, "paper-dg", "psi = R(2 atan(D/2)) (tested in t-formulas)", w->osc, r,
-               out, how);
+    return f_v(&w->dg.a->fields, "paper-dg", "psi = R(2 atan(D/2)) (tested in t-formulas)", w->osc,
+               r, out, how);
 }
 
 static int f_rk4_map(struct hl_paper_work *w, const row_t *r, hl_alg *out, char **how,
@@ -584,22 +558,20 @@ static int f_rk4_map(struct hl_paper_work *w, const row_t *r, hl_alg *out, char 
 {
     (void)r;
     copy2(out, w->euler_map, w->osc);
-    hl_errors_correct_map(out, &w->e_euler, 4, w->osc);
+    hl_errors_correct_map(out, &w->euler.a->fields, 4, w->osc);
     /* against the catalog's RK4 (a Butcher tableau), expanded */
-    hl_series *psi = NULL;
-    hl_vfields e;
-    int st = expand_catalog(&psi, &e, "rk4", NULL, w->osc, NV, err);
-    int ok = st == HL_OK ? map_matches_series(out, psi, NV + 1, w->osc) : -1;
+    analysed rk4 = {NULL, NULL};
+    int st = expand_catalog(&rk4, "rk4", NULL, 0, w->osc, NV, err);
+    int ok = st == HL_OK ? map_matches_series(out, rk4.a->psi, NV + 1, w->osc) : -1;
     hl_buf b;
     hl_buf_init(&b);
     hl_buf_printf(&b, "Euler's map minus D^2/2 v_2 + D^3/6 v_3 + D^4/24 v_4 "
                       "(hl_errors_correct_map); %s catalog rk4 expanded to O(D^%d)",
                   ok == 1 ? "equals" : ok == 0 ? "DIFFERS from" : "not compared with", NV + 1);
     if (st == HL_OK)
-        hl_buf_printf(&b, "; rk4 re-analysed: order %d", e.order);
+        hl_buf_printf(&b, "; rk4 re-analysed: order %d", rk4.a->fields.order);
     *how = hl_buf_take(&b);
-    hl_vfields_clear(&e, w->osc);
-    series_vec_free(psi, 2, hl_system_ctx(w->osc));
+    analysed_clear(&rk4);
     return st;
 }
 
@@ -656,14 +628,13 @@ static int f_dg_sign(struct hl_paper_work *w, const row_t *r, hl_alg *out, char 
 {
     (void)r;
     hl_alg_ctx *ctx = hl_system_ctx(w->osc);
-    hl_errfield F;
-    int m = w->e_dg.leading;
-    int st = hl_errfield_classify(&F, hl_vfields_v(&w->e_dg, m), w->osc, err);
-    if (st != HL_OK)
-        return st;
+    (void)err;
+    const hl_analysis *a = w->dg.a;
+    int m = a->fields.leading;
     fmpq_t c;
     fmpq_init(c);
-    if (F.kind == HL_ERRFIELD_TIME_SHIFT && hl_alg_is_fmpq(&F.lambda, c, ctx)) {
+    if (a->have_leading && a->leading.kind == HL_ERRFIELD_TIME_SHIFT &&
+        hl_alg_is_fmpq(&a->leading.lambda, c, ctx)) {
         hl_alg_set_si(&out[0], fmpq_sgn(c), ctx);
         char *cs = fmpq_get_str(NULL, 10, c);
         hl_buf b;
@@ -678,7 +649,6 @@ static int f_dg_sign(struct hl_paper_work *w, const row_t *r, hl_alg *out, char 
         *how = hl_xstrdup("the leading error is not a constant time shift");
     }
     fmpq_clear(c);
-    hl_errfield_clear(&F, w->osc);
     return HL_OK;
 }
 
@@ -724,33 +694,32 @@ static int f_dg_two(struct hl_paper_work *w, const row_t *r, hl_alg *out, char *
 static int dg_tau_how(char **how, const char *what, struct hl_paper_work *w)
 {
     hl_alg_ctx *ctx = hl_system_ctx(w->osc);
-    hl_series tau;
-    int ok = 0, fk = 0;
-    hl_series_init(&tau, 0, ctx);
-    int st = hl_errors_time_series(&tau, &ok, &fk, w->psi_dg, w->osc, NV, NULL);
+    const hl_analysis *an = w->dg.a; /* its tau(D) solved order by order (HL_ANALYSIS_TIME) */
+    int ok = an->tried_tau && an->tau_ok;
+    const hl_series *tau = &an->tau;
     hl_buf b;
     hl_buf_init(&b);
-    hl_buf_printf(&b, "%s; closed form: the DG map is the rotation by tau = 2 atan(D/2) "
-                      "(hl_errors_time_closed); independently the series tau(D) with psi = "
-                      "exp(tau g) solved order by order from the scheme's expansion %s",
-                  what, st == HL_OK && ok ? "is a pure time shift to O(D^9)" : "FAILED");
-    if (st == HL_OK && ok) {
+    hl_buf_printf(&b,
+                  "%s; closed form: the DG map is the rotation by tau = 2 atan(D/2) "
+                  "(hl_errors_time_closed); independently the series tau(D) with psi = "
+                  "exp(tau g) solved order by order from the scheme's expansion %s",
+                  what, ok ? "is a pure time shift to O(D^9)" : "FAILED");
+    if (ok) {
         /* compare with the Taylor series of 2 atan(D/2) */
         hl_alg a;
         hl_series s;
         hl_alg_init(&a, ctx);
         hl_series_init(&s, 0, ctx);
-        int same = hl_system_read(&a, w->osc, "2*atan(D/2)", NULL) == HL_OK &&
-                   hl_series_from_alg(&s, &a, hl_system_var_D(w->osc), tau.n, ctx, NULL) ==
-                       HL_OK &&
-                   hl_series_equal(&s, &tau, ctx);
+        int same =
+            hl_system_read(&a, w->osc, "2*atan(D/2)", NULL) == HL_OK &&
+            hl_series_from_alg(&s, &a, hl_system_var_D(w->osc), tau->n, ctx, NULL) == HL_OK &&
+            hl_series_equal(&s, tau, ctx);
         hl_buf_printf(&b, " and %s 2 atan(D/2)", same ? "equals the Taylor series of"
                                                       : "DIFFERS from");
         hl_alg_clear(&a, ctx);
         hl_series_clear(&s, ctx);
     }
     *how = hl_buf_take(&b);
-    hl_series_clear(&tau, ctx);
     return HL_OK;
 }
 
@@ -789,7 +758,7 @@ static int f_dg_T(struct hl_paper_work *w, const row_t *r, hl_alg *out, char **h
 static int rel_lhs(hl_alg *out, struct hl_paper_work *w, int k, int s, hl_error *err)
 {
     hl_alg_ctx *ctx = hl_system_ctx(w->cub);
-    const hl_series *K = w->K_cub[s];
+    const hl_series *K = w->rel[s].a->K_series;
     if (K[0].n <= k || K[1].n <= k)
         return hl_error_set(err, HL_ELIMIT, NULL, -1, 0, "K known only to O(D^%d)", K[0].n);
     fmpq_t f;
@@ -811,17 +780,18 @@ static int f_rel(struct hl_paper_work *w, const row_t *r, hl_alg *out, char **ho
         return st;
     hl_buf b;
     hl_buf_init(&b);
-    hl_buf_printf(&b, "left side d^%dK/dD^%d at 0 = %d! [D^%d] K, K from the scheme's series; "
-                      "checked on H = (p^2+x^2)/2 + x^3/3 (nonlinear) for %s and for %s (the "
-                      "relation must hold for both); the print's right side evaluated with "
-                      "the true v_k (direct and via K: the two %s, %s), read as the paper's "
-                      "(Err) does: operators on functions composed, A o B (z) = A(B(z)), "
-                      "g phi = {phi, H}, v_k phi = k! [D^k] (phi o psi_D - phi o exp(D g)); "
-                      "hamlie itself uses the exact identity K = (d/dD psi)(psi_{-D}), "
-                      "v_k = (k-1)! ([D^(k-1)] K - [D^(k-1)] K~) with psi~ = exp(D g) + "
-                      "sum_{j<k} D^j/j! v_j",
-                  k, k, k, k, REL_NAMES[0], REL_NAMES[1], agree_text(&w->e_cub[0]),
-                  agree_text(&w->e_cub[1]));
+    hl_buf_printf(&b,
+                  "left side d^%dK/dD^%d at 0 = %d! [D^%d] K, K from the scheme's series; "
+                  "checked on H = (p^2+x^2)/2 + x^3/3 (nonlinear) for %s and for %s (the "
+                  "relation must hold for both); the print's right side evaluated with "
+                  "the true v_k (direct and via K: the two %s, %s), read as the paper's "
+                  "(Err) does: operators on functions composed, A o B (z) = A(B(z)), "
+                  "g phi = {phi, H}, v_k phi = k! [D^k] (phi o psi_D - phi o exp(D g)); "
+                  "hamlie itself uses the exact identity K = (d/dD psi)(psi_{-D}), "
+                  "v_k = (k-1)! ([D^(k-1)] K - [D^(k-1)] K~) with psi~ = exp(D g) + "
+                  "sum_{j<k} D^j/j! v_j",
+                  k, k, k, k, REL_NAMES[0], REL_NAMES[1], agree_text(&w->rel[0].a->fields),
+                  agree_text(&w->rel[1].a->fields));
     *how = hl_buf_take(&b);
     return HL_OK;
 }
