@@ -100,6 +100,77 @@ static void json_algs(hl_json *j, const hl_alg *a, int n, hl_system *sys)
     hl_json_array_end(j);
 }
 
+/* "invariants": the leading field's, or null */
+static void json_invariants(hl_json *j, const hl_analysis *A)
+{
+    hl_json_key(j, "invariants");
+    if (A->have_leading && A->invariants_degree > 0 && A->inv_poly_applicable) {
+        hl_json_object_begin(j);
+        hl_json_kv_int(j, "degree", A->invariants_degree);
+        hl_json_key(j, "polynomial");
+        json_algs(j, A->inv_poly, A->n_inv_poly, A->sys);
+        hl_json_key(j, "rational");
+        if (A->inv_darboux_applicable)
+            json_algs(j, A->inv_darboux, A->n_inv_darboux, A->sys);
+        else
+            hl_json_null(j);
+        hl_json_object_end(j);
+    } else
+        hl_json_null(j);
+}
+
+/* "modified": f_1..f_J and their Hamiltonians */
+static void json_modified(hl_json *j, const hl_analysis *A)
+{
+    hl_json_key(j, "modified");
+    hl_json_object_begin(j);
+    hl_json_kv_int(j, "terms", A->nmod);
+    hl_json_key(j, "fields");
+    hl_json_array_begin(j);
+    for (int k = 1; k <= A->nmod; k++)
+        hl_json_vector_field(j, A->m, A->names, A->mod_fields + k * A->m, hl_system_ctx(A->sys),
+                             hl_system_pool(A->sys), HL_STYLE_SYMPY);
+    hl_json_array_end(j);
+    hl_json_key(j, "hamiltonians");
+    if (A->mod_H_all)
+        json_algs(j, A->mod_H + 1, A->nmod, A->sys);
+    else
+        hl_json_null(j);
+    hl_json_object_end(j);
+}
+
+/* "time": tau(D), when tried, or null */
+static void json_time(hl_json *j, const hl_analysis *A)
+{
+    hl_json_key(j, "time");
+    if (A->tried_tau) {
+        hl_json_object_begin(j);
+        hl_json_kv_bool(j, "pure_time_translation", A->tau_ok);
+        hl_json_key(j, "fails_at");
+        if (A->tau_ok)
+            hl_json_null(j);
+        else
+            hl_json_int(j, A->tau_fail);
+        if (A->tau_ok) {
+            char *t = errors_tau_text(A, 0, HL_STYLE_SYMPY),
+                 *w = errors_tau_text(A, 1, HL_STYLE_SYMPY);
+            hl_json_kv_string(j, "tau_series", t);
+            hl_json_kv_string(j, "W_series", w);
+            free(t);
+            free(w);
+        }
+        if (A->tau_closed) {
+            json_alg(j, "tau", &A->tau_forms[0], A);
+            json_alg(j, "tan_half_tau", &A->tau_forms[1], A);
+        }
+        if (A->have_D2)
+            json_alg(j, "double_step", &A->tau_forms[2], A);
+        hl_json_kv_bool(j, "closed_form_from_series", A->tau_series_only);
+        hl_json_object_end(j);
+    } else
+        hl_json_null(j);
+}
+
 void errors_write_json(hl_buf *out, const hl_analysis *A, const char *source, const char *input)
 {
     hl_json j;
@@ -138,62 +209,9 @@ void errors_write_json(hl_buf *out, const hl_analysis *A, const char *source, co
         hl_json_null(&j);
     else
         json_K_coefficients(&j, A);
-    hl_json_key(&j, "invariants");
-    if (A->have_leading && A->invariants_degree > 0 && A->inv_poly_applicable) {
-        hl_json_object_begin(&j);
-        hl_json_kv_int(&j, "degree", A->invariants_degree);
-        hl_json_key(&j, "polynomial");
-        json_algs(&j, A->inv_poly, A->n_inv_poly, A->sys);
-        hl_json_key(&j, "rational");
-        if (A->inv_darboux_applicable)
-            json_algs(&j, A->inv_darboux, A->n_inv_darboux, A->sys);
-        else
-            hl_json_null(&j);
-        hl_json_object_end(&j);
-    } else
-        hl_json_null(&j);
-    hl_json_key(&j, "modified");
-    hl_json_object_begin(&j);
-    hl_json_kv_int(&j, "terms", A->nmod);
-    hl_json_key(&j, "fields");
-    hl_json_array_begin(&j);
-    for (int k = 1; k <= A->nmod; k++)
-        hl_json_vector_field(&j, A->m, A->names, A->mod_fields + k * A->m, hl_system_ctx(A->sys),
-                             hl_system_pool(A->sys), HL_STYLE_SYMPY);
-    hl_json_array_end(&j);
-    hl_json_key(&j, "hamiltonians");
-    if (A->mod_H_all)
-        json_algs(&j, A->mod_H + 1, A->nmod, A->sys);
-    else
-        hl_json_null(&j);
-    hl_json_object_end(&j);
-    hl_json_key(&j, "time");
-    if (A->tried_tau) {
-        hl_json_object_begin(&j);
-        hl_json_kv_bool(&j, "pure_time_translation", A->tau_ok);
-        hl_json_key(&j, "fails_at");
-        if (A->tau_ok)
-            hl_json_null(&j);
-        else
-            hl_json_int(&j, A->tau_fail);
-        if (A->tau_ok) {
-            char *t = errors_tau_text(A, 0, HL_STYLE_SYMPY),
-                 *w = errors_tau_text(A, 1, HL_STYLE_SYMPY);
-            hl_json_kv_string(&j, "tau_series", t);
-            hl_json_kv_string(&j, "W_series", w);
-            free(t);
-            free(w);
-        }
-        if (A->tau_closed) {
-            json_alg(&j, "tau", &A->tau_forms[0], A);
-            json_alg(&j, "tan_half_tau", &A->tau_forms[1], A);
-        }
-        if (A->have_D2)
-            json_alg(&j, "double_step", &A->tau_forms[2], A);
-        hl_json_kv_bool(&j, "closed_form_from_series", A->tau_series_only);
-        hl_json_object_end(&j);
-    } else
-        hl_json_null(&j);
+    json_invariants(&j, A);
+    json_modified(&j, A);
+    json_time(&j, A);
     hl_json_key(&j, "corrected");
     if (A->correct) {
         hl_json_object_begin(&j);
