@@ -11,6 +11,11 @@
  * (The paper's printed second and third differences are not used.)
  *
  * The leading field v_m is classified (hl_errfield_kind).
+ *
+ * hl_analysis_compute (at the end) runs the whole of §4 in one call and
+ * returns one struct: what `hamlie errors` prints, what `hamlie reproduce`
+ * checks, and what a binding would return.  The functions above it are its
+ * pieces, for a caller who wants one of them alone.
  */
 #ifndef HAMLIE_ANALYSIS_H
 #define HAMLIE_ANALYSIS_H
@@ -282,7 +287,8 @@ typedef struct hl_analysis {
  * classified, then the parts asked for in opts->parts and the corrected
  * scheme.  Every budget is a bonus's: past it the part is left out and the
  * result says so (map_omitted, have_K, fields.over_budget); the v_k never
- * depend on one.  *out is NULL on failure (err set).  s and sys must outlive
+ * depend on one.  opts NULL: hl_analysis_opts_default's.  *out is NULL on
+ * failure (err set).  s and sys must outlive
  * *out; hl_analysis_free(NULL) is a no-op. */
 hl_status hl_analysis_compute(hl_analysis **out, const hl_analysis_opts *opts,
                               const struct hl_scheme *s, hl_system *sys, hl_error *err);

@@ -208,6 +208,11 @@ static int compute(hl_analysis *A, const hl_analysis_opts *o, hl_error *err)
 hl_status hl_analysis_compute(hl_analysis **out, const hl_analysis_opts *opts,
                               const struct hl_scheme *s, hl_system *sys, hl_error *err)
 {
+    hl_analysis_opts defaults;
+    if (opts == NULL) {
+        hl_analysis_opts_default(&defaults);
+        opts = &defaults;
+    }
     *out = NULL;
     if (opts->order < 2 || opts->order > HL_ANALYSIS_MAX_ORDER)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0,

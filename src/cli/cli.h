@@ -154,6 +154,9 @@ void cli_numeric_note(hl_buf *out, hl_system *sys, cli_format f);
 /* A formula as typed, shown in a style (LaTeX re-prints the parsed form). */
 char *cli_show_input(const char *text, hl_system *sys, cli_format f);
 
+/* Name of phase variable i: q_1..q_N, then p_1..p_N (i < 2N). */
+const char *cli_phase_name(const hl_system *sys, int i);
+
 /* Name of the image of phase variable a in a map: x -> X, px -> PX. */
 char *cli_image_name(hl_system *sys, int a);
 

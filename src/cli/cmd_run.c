@@ -203,7 +203,7 @@ static void json_state(hl_json *j, const char *key, hl_system *sys, const double
     hl_json_key(j, key);
     hl_json_object_begin(j);
     for (int i = 0; i < 2 * N; i++) {
-        const char *name = i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N);
+        const char *name = cli_phase_name(sys, i);
         if (zs != NULL)
             hl_json_kv_string(j, name, zs[i] != NULL ? zs[i] : "");
         else

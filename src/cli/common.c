@@ -240,6 +240,12 @@ int cli_main(int argc, char **argv, const cli_spec *spec)
     return rc;
 }
 
+const char *cli_phase_name(const hl_system *sys, int i)
+{
+    int N = hl_system_ndof(sys);
+    return i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N);
+}
+
 int cli_check_scheme_source(const cli_opts *o, const char *scheme, const char *equations,
                             const char *why_H, const cli_command *cmd)
 {

@@ -264,7 +264,7 @@ int errors_run_numeric(hl_buf *out, hl_system *sys, int order, const err_opts *r
     at_point R = {sys, NULL, 2 * N, order, NULL};
     R.names = hl_xmalloc((size_t)R.m * sizeof *R.names);
     for (int i = 0; i < R.m; i++)
-        R.names[i] = i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N);
+        R.names[i] = cli_phase_name(sys, i);
     int rc = run_numeric(out, &R, r, o, cmd);
     hl_scheme_free(R.s);
     free(R.names);

@@ -94,7 +94,7 @@ void run_csv_header(csv *c, hl_system *sys, const run_opts *r)
     hl_buf_puts(&c->buf, "t");
     for (int i = 0; i < 2 * N; i++) {
         hl_buf_putc(&c->buf, ',');
-        csv_field(&c->buf, i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N));
+        csv_field(&c->buf, cli_phase_name(sys, i));
     }
     hl_buf_puts(&c->buf, ",H");
     if (c->sigma)
@@ -115,7 +115,7 @@ void run_plot_open(csv *c, hl_system *sys, const run_opts *r, const cli_opts *o)
     const char **names = hl_xmalloc((size_t)(2 * N + 3 + r->nobserve) * sizeof *names);
     names[n++] = "t";
     for (int i = 0; i < 2 * N; i++)
-        names[n++] = i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N);
+        names[n++] = cli_phase_name(sys, i);
     names[n++] = "H";
     if (c->sigma)
         names[n++] = "sigma";

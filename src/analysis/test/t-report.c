@@ -156,6 +156,13 @@ static void test_exact_and_budget(hl_system *sys)
     CHECK(hl_analysis_compute(&A, &o, s, sys, &err) == HL_EINVAL && A == NULL);
     hl_scheme_free(s);
     hl_analysis_free(NULL);
+
+    /* no options: the defaults (order 4, every part) */
+    CHECK(hl_scheme_new(&s, "euler", 0, sys, &err) == HL_OK);
+    CHECK(hl_analysis_compute(&A, NULL, s, sys, &err) == HL_OK && A->n == 4 && A->closed &&
+          A->nmod == 4 && A->fields.leading == 2);
+    hl_analysis_free(A);
+    hl_scheme_free(s);
 }
 
 int main(void)
