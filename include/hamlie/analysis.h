@@ -11,6 +11,11 @@
  * (The paper's printed second and third differences are not used.)
  *
  * The leading field v_m is classified (hl_errfield_kind).
+ *
+ * hl_analysis_compute (at the end) runs the whole of §4 in one call and
+ * returns one struct: what `hamlie errors` prints, what `hamlie reproduce`
+ * checks, and what a binding would return.  The functions above it are its
+ * pieces, for a caller who wants one of them alone.
  */
 #ifndef HAMLIE_ANALYSIS_H
 #define HAMLIE_ANALYSIS_H
@@ -186,6 +191,108 @@ hl_status hl_modified_field(hl_alg *mf, const hl_series *psi, hl_system *sys, in
  * from the series to the order computed, not proved. */
 hl_status hl_errors_time_closed_series(hl_alg *tau, hl_alg *r, int *ok, hl_alg *D2,
                                        const hl_series *psi, hl_system *sys, int n, hl_error *err);
+
+/* ---- the whole analysis: one call (hamlie errors, reproduce) ------------ */
+
+/* Vectors of m series (each O(D^n) at first); hl_series_vec_free(NULL, ...)
+ * is a no-op.  NOTE: series helpers, kept here while issue 14 keeps the
+ * series layer's header to its owner; they belong in series.h. */
+hl_series *hl_series_vec_new(int m, int n, const hl_alg_ctx *ctx);
+void hl_series_vec_free(hl_series *s, int m, const hl_alg_ctx *ctx);
+
+#define HL_ANALYSIS_MAX_ORDER 40
+#define HL_ANALYSIS_MODIFIED_MAX 5 /* the modified field to f_5 (D^4) at most */
+/* Terms an intermediate polynomial of K's closed form may reach: the closed
+ * form is a bonus, and for a scheme that nests radicals (Stormer-Verlet on
+ * Kepler) it swells without end.  The v_k never depend on it. */
+#define HL_ANALYSIS_K_CLOSED_BUDGET 5000
+/* Terms the coefficients of one composition of the K route (the check of
+ * the v_k) may reach together: past it (Gonzalez on Henon-Heiles, Yoshida
+ * on Kepler) the v_k are computed one way only, and the result says so. */
+#define HL_ANALYSIS_K_ROUTE_BUDGET 250000
+
+/* The parts past the v_k, each a bonus that may be left out. */
+enum {
+    HL_ANALYSIS_CLOSED = 1 << 0,     /* explicit schemes: the map and K(D) in closed form */
+    HL_ANALYSIS_INVARIANTS = 1 << 1, /* invariants of the leading field (part 5) */
+    HL_ANALYSIS_TIME = 1 << 2,       /* tau(D) when the leading field is c g (part 4) */
+    HL_ANALYSIS_MODIFIED = 1 << 3,   /* modified field and Hamiltonian (part 6) */
+    HL_ANALYSIS_ALL = (1 << 4) - 1
+};
+
+typedef struct hl_analysis_opts {
+    int order;             /* n: v_2..v_n, 2..HL_ANALYSIS_MAX_ORDER */
+    int correct;           /* M in 2..n: also psi_D - sum_{k<=M} D^k/k! v_k; 0: not */
+    int invariants_degree; /* 0..8 (0: no search) */
+    long K_route_budget;   /* hl_vfields_compute_bounded's budget; <= 0: none */
+    long K_closed_budget;  /* hl_errors_K_closed_bounded's budget */
+    unsigned parts;        /* HL_ANALYSIS_* */
+} hl_analysis_opts;
+
+/* Order 4, no correction, invariants to degree 2, the budgets above, every
+ * part: what `hamlie errors` computes without options. */
+void hl_analysis_opts_default(hl_analysis_opts *o);
+
+/* Everything the analysis of one scheme found.  Flags say which parts are
+ * there; what is not there is zeroed/NULL. */
+typedef struct hl_analysis {
+    hl_system *sys;                 /* borrowed from the caller */
+    const struct hl_scheme *scheme; /* borrowed from the caller */
+    int m, n;                       /* 2N phase variables; v_2..v_n */
+    const char **names;             /* the m phase variable names (the system's) */
+    hl_series *psi;                 /* m series: the expansion to O(D^(n+1)) */
+    hl_vfields fields;              /* v_2..v_n, two ways unless over budget */
+    hl_errfield leading;            /* the leading field classified, if have_leading */
+    int have_leading;
+    hl_series *K_series; /* K(D)'s series (m), NULL past the K route's budget */
+
+    /* HL_ANALYSIS_CLOSED, explicit schemes without integrals */
+    int closed;                         /* map in closed form (and printable) */
+    hl_alg *map;                        /* m images */
+    char map_omitted[HL_ERROR_MSG_MAX]; /* explicit, but the map left out: why */
+    int have_K;                         /* K's closed form within budget and printable */
+    hl_alg *K;                          /* m components */
+    long K_terms;                       /* else the terms it reached (over budget) */
+    long K_closed_budget;               /* the budget it was given */
+    double K_printed;                   /* or its size written out (hl_expr_tree_size) */
+
+    /* HL_ANALYSIS_INVARIANTS, when have_leading and invariants_degree > 0 */
+    int invariants_degree, inv_poly_applicable, inv_darboux_applicable;
+    int n_inv_poly, n_inv_darboux;
+    hl_alg *inv_poly, *inv_darboux;
+
+    /* HL_ANALYSIS_TIME: tried when there is no error or it is c g */
+    int tried_tau, tau_ok, tau_fail;
+    hl_series tau; /* tau(D), n + 1 coefficients */
+    int tau_closed, have_D2, tau_series_only;
+    hl_alg *tau_forms; /* tau, tan(tau/2), D2 in closed form (3) */
+
+    /* HL_ANALYSIS_MODIFIED */
+    int nmod;           /* f_1..f_nmod, nmod = min(n, HL_ANALYSIS_MODIFIED_MAX) */
+    hl_alg *mod_fields; /* (nmod+1)*m: f_j at mod_fields + j*m */
+    hl_alg *mod_H;      /* nmod+1: mod_H[j] the h of f_j */
+    int mod_H_all;      /* every f_j Hamiltonian with its h found */
+
+    /* opts->correct */
+    int correct;
+    hl_series *cpsi; /* the corrected series (m) */
+    hl_alg *cmap;    /* the corrected map, when closed */
+    hl_vfields cfields;
+    hl_errfield cleading;
+    int have_cfields, have_cleading;
+} hl_analysis;
+
+/* The error analysis of the scheme s on sys (paper §4): the expansion, the
+ * v_k two ways (an "internal error" when they disagree), the leading field
+ * classified, then the parts asked for in opts->parts and the corrected
+ * scheme.  Every budget is a bonus's: past it the part is left out and the
+ * result says so (map_omitted, have_K, fields.over_budget); the v_k never
+ * depend on one.  opts NULL: hl_analysis_opts_default's.  *out is NULL on
+ * failure (err set).  s and sys must outlive
+ * *out; hl_analysis_free(NULL) is a no-op. */
+hl_status hl_analysis_compute(hl_analysis **out, const hl_analysis_opts *opts,
+                              const struct hl_scheme *s, hl_system *sys, hl_error *err);
+void hl_analysis_free(hl_analysis *a);
 
 #ifdef __cplusplus
 }

@@ -10,23 +10,6 @@ static void fact(fmpq_t f, int k, int inverse)
     fmpz_fac_ui(inverse ? fmpq_denref(f) : fmpq_numref(f), (ulong)k);
 }
 
-static hl_series *series_vec(int m, int n, hl_alg_ctx *ctx)
-{
-    hl_series *s = hl_xmalloc((size_t)m * sizeof *s);
-    for (int i = 0; i < m; i++)
-        hl_series_init(&s[i], n, ctx);
-    return s;
-}
-
-static void series_vec_free(hl_series *s, int m, hl_alg_ctx *ctx)
-{
-    if (s == NULL)
-        return;
-    for (int i = 0; i < m; i++)
-        hl_series_clear(&s[i], ctx);
-    free(s);
-}
-
 /* lie[i] = exp(D g) z_i to O(D^n). */
 static int lie_vec(hl_series *lie, hl_system *sys, int n, hl_error *err)
 {
@@ -60,14 +43,14 @@ static int errors_from_K(hl_vfields *e, const hl_series *psi, const hl_series *l
     for (int i = 0; i < m; i++)
         vars[i] = i < N ? hl_system_var_q(sys, i) : hl_system_var_p(sys, i - N);
     int vD = hl_system_var_D(sys);
-    hl_series *K = e->K, *Kt = series_vec(m, 0, ctx), *pt = series_vec(m, 0, ctx);
+    hl_series *K = e->K, *Kt = hl_series_vec_new(m, 0, ctx), *pt = hl_series_vec_new(m, 0, ctx);
     hl_alg d;
     fmpq_t f;
     hl_alg_init(&d, ctx);
     fmpq_init(f);
     st = hl_series_scheme_K_bounded(K, m, psi, vars, vD, e->budget, ctx, err); /* K.n >= n */
     if (st != HL_OK) {
-        series_vec_free(e->K, m, ctx);
+        hl_series_vec_free(e->K, m, ctx);
         e->K = NULL;
     }
     for (int k = 2; k <= n && st == HL_OK; k++) {
@@ -89,8 +72,8 @@ static int errors_from_K(hl_vfields *e, const hl_series *psi, const hl_series *l
     }
     hl_alg_clear(&d, ctx);
     fmpq_clear(f);
-    series_vec_free(Kt, m, ctx);
-    series_vec_free(pt, m, ctx);
+    hl_series_vec_free(Kt, m, ctx);
+    hl_series_vec_free(pt, m, ctx);
     free(vars);
     if (st == HL_ELIMIT && e->budget > 0) { /* a check left out, not a failure */
         e->over_budget = 1;
@@ -122,7 +105,7 @@ static int compute(hl_vfields *e, const hl_series *psi, hl_system *sys, int n, i
                             "the order must be between 2 and %d, not %d", HL_SERIES_MAX_N - 2, n);
     e->v = hl_alg_vec_new((n + 1) * m, ctx);
     e->vK = hl_alg_vec_new((n + 1) * m, ctx);
-    e->K = cross ? series_vec(m, 0, ctx) : NULL;
+    e->K = cross ? hl_series_vec_new(m, 0, ctx) : NULL;
     if (!hl_system_has_H(sys))
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "error analysis needs a Hamiltonian");
     for (int i = 0; i < m; i++)
@@ -130,7 +113,7 @@ static int compute(hl_vfields *e, const hl_series *psi, hl_system *sys, int n, i
             return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
                                 "the scheme's expansion is known to O(D^%d), need O(D^%d)",
                                 psi[i].n, n + 1);
-    hl_series *lie = series_vec(m, 0, ctx);
+    hl_series *lie = hl_series_vec_new(m, 0, ctx);
     st = lie_vec(lie, sys, n + 1, err);
     hl_alg d;
     fmpq_t f;
@@ -161,7 +144,7 @@ static int compute(hl_vfields *e, const hl_series *psi, hl_system *sys, int n, i
     }
     hl_alg_clear(&d, ctx);
     fmpq_clear(f);
-    series_vec_free(lie, m, ctx);
+    hl_series_vec_free(lie, m, ctx);
     return st;
 }
 
@@ -188,7 +171,7 @@ void hl_vfields_clear(hl_vfields *e, hl_system *sys)
     hl_alg_ctx *ctx = hl_system_ctx(sys);
     hl_alg_vec_free(e->v, (e->n + 1) * 2 * e->N, ctx);
     hl_alg_vec_free(e->vK, (e->n + 1) * 2 * e->N, ctx);
-    series_vec_free(e->K, 2 * e->N, ctx);
+    hl_series_vec_free(e->K, 2 * e->N, ctx);
     e->v = e->vK = NULL;
     e->K = NULL;
 }

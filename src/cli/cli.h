@@ -122,6 +122,13 @@ typedef struct cli_begin_spec {
 int cli_begin(char ***av, cli_opts *o, hl_system **sys, int argc, char **argv,
               const cli_command *cmd, const cli_begin_spec *spec, void *arg);
 
+/* The checks every scheme-running command (run, errors) makes first: -H
+ * given (else "missing -H: <why_H>"), no positional argument, exactly one
+ * of --scheme, --map and --equations.  -1 to go on, or 2 after the usage
+ * message. */
+int cli_check_scheme_source(const cli_opts *o, const char *scheme, const char *equations,
+                            const char *why_H, const cli_command *cmd);
+
 /* Print an error with its formula and a caret under err->pos; returns 2
  * (CLI_INTERRUPTED for HL_ESTOP: the job was interrupted). */
 int cli_fail(const hl_error *err);
@@ -146,6 +153,9 @@ void cli_numeric_note(hl_buf *out, hl_system *sys, cli_format f);
 
 /* A formula as typed, shown in a style (LaTeX re-prints the parsed form). */
 char *cli_show_input(const char *text, hl_system *sys, cli_format f);
+
+/* Name of phase variable i: q_1..q_N, then p_1..p_N (i < 2N). */
+const char *cli_phase_name(const hl_system *sys, int i);
 
 /* Name of the image of phase variable a in a map: x -> X, px -> PX. */
 char *cli_image_name(hl_system *sys, int a);

@@ -2,8 +2,9 @@
  *
  * The options proper to run are taken out of argv here, before the common
  * parser (cli_parse) sees the rest: opts.c's table has no room for them.
- * The CSV is streamed (a run can have millions of rows) in whole lines; the
- * summary and the orders table are buffered and printed at the end. */
+ * The CSV is streamed (a run can have millions of rows) in whole lines
+ * (run_csv.c); the summary and the orders table are buffered and printed at
+ * the end. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -12,7 +13,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "cli/cli.h"
+#include "cli/run.h"
 #include "hamlie/exact.h"
 #include "hamlie/flow.h"
 #include "hamlie/run.h"
@@ -77,17 +78,6 @@ const char cmd_run_help[] =
     "130 interrupted.\n"
     "Example: hamlie run -H '(p^2+x^2)/2' --scheme euler --dt 0.1 --t 20 --init x=1,p=0\n";
 
-/* The options proper to run. */
-typedef struct run_opts {
-    const char *scheme, *equations, *init, *out, *orders, *plot, *formats;
-    const char *dt_s, *t_s, *tol_s, *every_s, *digits_s;
-    const char **observe;
-    int nobserve, no_ref;
-    double dt, t, tol, digits;
-    long every;
-    int have_dt;
-} run_opts;
-
 static void found_opt(void *arg, int k, const char *value)
 {
     run_opts *r = arg;
@@ -120,15 +110,9 @@ static int adaptive(const run_opts *r);
 static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
 {
     run_opts *r = arg;
-    int rc = -1;
-    if (o->H == NULL)
-        return cli_usage(cmd, "missing -H: a run needs a Hamiltonian");
-    if (o->nargs > 0)
-        return cli_usage(cmd, "unexpected argument '%s'", o->args[0]);
-    int nsrc = (r->scheme != NULL) + (o->map != NULL) + (r->equations != NULL);
-    if (nsrc != 1)
-        return cli_usage(cmd, nsrc == 0 ? "give a scheme: --scheme NAME, --map or --equations"
-                                        : "give only one of --scheme, --map and --equations");
+    int rc = cli_check_scheme_source(o, r->scheme, r->equations, "a run needs a Hamiltonian", cmd);
+    if (rc >= 0)
+        return rc;
     if (r->digits_s != NULL) {
         if ((rc = parse_double(&r->digits, r->digits_s, "--digits", cmd)) >= 0)
             return rc;
@@ -186,166 +170,11 @@ static int adaptive(const run_opts *r)
            (r->tol_s != NULL || r->digits_s != NULL || !r->have_dt) && r->orders == NULL;
 }
 
-/* ---- CSV ---------------------------------------------------------------- */
-
-typedef struct csv {
-    FILE *fp;
-    hl_buf buf;     /* whole lines waiting to be written */
-    int n2, nobs, sigma;
-    int io_error;
-    long rows;
-    hl_runplot *plot; /* --plot: the rows kept for the figures, or NULL */
-    double *plot_row; /* 1 + n2 + 1 + sigma + nobs values */
-} csv;
-
-static void csv_field(hl_buf *b, const char *s)
-{
-    if (strpbrk(s, ",\"\n") == NULL) {
-        hl_buf_puts(b, s);
-        return;
-    }
-    hl_buf_putc(b, '"');
-    for (; *s; s++) {
-        if (*s == '"')
-            hl_buf_putc(b, '"');
-        hl_buf_putc(b, *s == '\n' ? ' ' : *s);
-    }
-    hl_buf_putc(b, '"');
-}
-
-static void csv_flush(csv *c)
-{
-    if (c->fp != NULL && c->buf.len > 0 && fwrite(c->buf.s, 1, c->buf.len, c->fp) != c->buf.len)
-        c->io_error = 1;
-    c->buf.len = 0;
-    if (c->buf.s != NULL)
-        c->buf.s[0] = '\0';
-    if (c->fp != NULL && fflush(c->fp) != 0)
-        c->io_error = 1;
-}
-
-static void csv_num(hl_buf *b, double v)
-{
-    char s[40];
-    s[0] = ',';
-    int n = hl_run_fmt(s + 1, v);
-    hl_buf_putn(b, s, (size_t)n + 1);
-}
-
 static double now(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-/* A row for the figures, in the CSV's column order. */
-static int plot_row(csv *c, const hl_run_row *row)
-{
-    double *v = c->plot_row;
-    int n = 0;
-    v[n++] = row->t;
-    for (int i = 0; i < c->n2; i++)
-        v[n++] = row->z[i];
-    v[n++] = row->H;
-    if (c->sigma)
-        v[n++] = row->sigma;
-    for (int i = 0; i < c->nobs; i++)
-        v[n++] = row->obs[i];
-    hl_error err;
-    return hl_runplot_add_row(c->plot, v, &err);
-}
-
-static int csv_row(const hl_run_row *row, void *arg)
-{
-    csv *c = arg;
-    if (c->plot != NULL) {
-        int st = plot_row(c, row);
-        if (st != HL_OK)
-            return st;
-    }
-    if (c->fp == NULL)
-        return 0;
-    hl_buf *b = &c->buf;
-    /* t = k dt is printed in its shortest form when 15 digits give it back */
-    char ts[40];
-    hl_buf_putn(b, ts, (size_t)hl_run_fmt_short(ts, row->t));
-    for (int i = 0; i < c->n2; i++)
-        csv_num(b, row->z[i]);
-    csv_num(b, row->H);
-    if (c->sigma)
-        csv_num(b, row->sigma);
-    for (int i = 0; i < c->nobs; i++)
-        csv_num(b, row->obs[i]);
-    hl_buf_putc(b, '\n');
-    c->rows++;
-    if (b->len >= 1 << 16)
-        csv_flush(c);
-    return c->io_error ? HL_EIO : 0;
-}
-
-static void csv_header(csv *c, hl_system *sys, const run_opts *r)
-{
-    int N = hl_system_ndof(sys);
-    hl_buf_puts(&c->buf, "t");
-    for (int i = 0; i < 2 * N; i++) {
-        hl_buf_putc(&c->buf, ',');
-        csv_field(&c->buf, i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N));
-    }
-    hl_buf_puts(&c->buf, ",H");
-    if (c->sigma)
-        hl_buf_puts(&c->buf, ",sigma");
-    for (int i = 0; i < r->nobserve; i++) {
-        hl_buf_putc(&c->buf, ',');
-        csv_field(&c->buf, r->observe[i]);
-    }
-    hl_buf_putc(&c->buf, '\n');
-}
-
-/* ---- --plot --------------------------------------------------------------- */
-
-/* The figures' store, with the CSV's columns; the label names the scheme. */
-static void plot_open(csv *c, hl_system *sys, const run_opts *r, const cli_opts *o)
-{
-    int N = hl_system_ndof(sys), n = 0;
-    const char **names = hl_xmalloc((size_t)(2 * N + 3 + r->nobserve) * sizeof *names);
-    names[n++] = "t";
-    for (int i = 0; i < 2 * N; i++)
-        names[n++] = i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N);
-    names[n++] = "H";
-    if (c->sigma)
-        names[n++] = "sigma";
-    for (int i = 0; i < r->nobserve; i++)
-        names[n++] = r->observe[i];
-    const char *label = r->scheme ? r->scheme : o->map ? "map" : "equations";
-    c->plot = hl_runplot_new(label, n, names);
-    c->plot_row = hl_xmalloc((size_t)n * sizeof *c->plot_row);
-    free(names);
-}
-
-/* Draw the figures of a completed run; returns the number of files or -1. */
-static int plot_write(csv *c, const run_opts *r)
-{
-    hl_runplot_opts po = HL_RUNPLOT_OPTS_DEFAULT;
-    if (r->formats != NULL)
-        po.formats = r->formats;
-    int written = 0;
-    hl_error err;
-    hl_error_clear(&err);
-    if (hl_runplot_write(&c->plot, 1, r->plot, &po, &written, &err) != HL_OK) {
-        hl_error_prefix(&err, "in --plot");
-        cli_fail(&err);
-        return -1;
-    }
-    return written;
-}
-
-static void plot_close(csv *c)
-{
-    hl_runplot_free(c->plot);
-    free(c->plot_row);
-    c->plot = NULL;
-    c->plot_row = NULL;
 }
 
 /* ---- JSON ------------------------------------------------------------------ */
@@ -374,7 +203,7 @@ static void json_state(hl_json *j, const char *key, hl_system *sys, const double
     hl_json_key(j, key);
     hl_json_object_begin(j);
     for (int i = 0; i < 2 * N; i++) {
-        const char *name = i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N);
+        const char *name = cli_phase_name(sys, i);
         if (zs != NULL)
             hl_json_kv_string(j, name, zs[i] != NULL ? zs[i] : "");
         else
@@ -390,53 +219,6 @@ static void json_end(hl_json *j)
 }
 
 /* ---- the two modes ------------------------------------------------------ */
-
-static int open_out(csv *c, const run_opts *r, char **tmpname)
-{
-    *tmpname = NULL;
-    if (r->out == NULL) {
-        c->fp = stdout;
-        return CLI_OK;
-    }
-    size_t n = strlen(r->out) + 5;
-    *tmpname = hl_xmalloc(n);
-    snprintf(*tmpname, n, "%s.tmp", r->out);
-    c->fp = fopen(*tmpname, "w");
-    if (c->fp == NULL) {
-        fprintf(stderr, "hamlie: error: cannot write '%s': %s\n", *tmpname, strerror(errno));
-        return CLI_ERROR;
-    }
-    return CLI_OK;
-}
-
-/* Close the CSV: FILE.tmp becomes FILE on success, FILE.partial on failure. */
-static int close_out(csv *c, const run_opts *r, const char *tmpname, int ok,
-                     const hl_run_stats *s)
-{
-    csv_flush(c);
-    if (tmpname == NULL)
-        return c->io_error ? CLI_ERROR : CLI_OK;
-    if (fclose(c->fp) != 0)
-        c->io_error = 1;
-    c->fp = NULL;
-    if (c->io_error) {
-        fprintf(stderr, "hamlie: error: writing '%s' failed\n", tmpname);
-        return CLI_ERROR;
-    }
-    size_t n = strlen(r->out) + 9;
-    char *dst = hl_xmalloc(n);
-    snprintf(dst, n, ok ? "%s" : "%s.partial", r->out);
-    int rc = CLI_OK;
-    if (rename(tmpname, dst) != 0) {
-        fprintf(stderr, "hamlie: error: cannot rename '%s' to '%s': %s\n", tmpname, dst,
-                strerror(errno));
-        rc = CLI_ERROR;
-    } else if (!ok)
-        fprintf(stderr, "hamlie: note: the %ld rows written (to t = %.17g) are kept in '%s'\n",
-                c->rows, s->t, dst);
-    free(dst);
-    return rc;
-}
 
 /* The rows --every would give for the steps done (run.h: row k is
  * delivered when k % every == 0 or k == n). */
@@ -502,7 +284,7 @@ static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts
         return cli_fail(&err);
     }
     int want_csv = r->out != NULL || o->format != CLI_JSON;
-    if (want_csv && (rc = open_out(&c, r, &tmpname)) != CLI_OK) {
+    if (want_csv && (rc = run_open_out(&c, r, &tmpname)) != CLI_OK) {
         free(tmpname);
         hl_buf_clear(&c.buf);
         return rc;
@@ -510,9 +292,9 @@ static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts
     if (!want_csv)
         c.fp = NULL;
     else
-        csv_header(&c, sys, r);
+        run_csv_header(&c, sys, r);
     if (r->plot != NULL)
-        plot_open(&c, sys, r, o);
+        run_plot_open(&c, sys, r, o);
     hl_run_set_reference(run, !r->no_ref, r->tol);
     hl_run_set_jit(run, 1);
     cli_progress p;
@@ -522,35 +304,35 @@ static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts
     memset(&s, 0, sizeof s);
     /* nothing consumes the rows of --json alone: the runner need not make them */
     int consumed = want_csv || r->plot != NULL || ad;
-    int st = ad ? hl_run_adaptive(run, z0, r->tol, dt, r->t, r->every, csv_row, &c, &s, &err)
-                : hl_run_fixed(run, z0, dt, r->t, r->every, consumed ? csv_row : NULL, &c, &s,
-                               &err);
+    int st =
+        ad ? hl_run_adaptive(run, z0, r->tol, dt, r->t, r->every, run_csv_row, &c, &s, &err)
+           : hl_run_fixed(run, z0, dt, r->t, r->every, consumed ? run_csv_row : NULL, &c, &s, &err);
     if (!consumed)
         s.rows = rows_for(s.steps, r->every, n);
     double wall = now() - w0;
     cli_progress_end(&p);
     int stopped = st == HL_ESTOP, figures = 0;
     if (st == HL_EIO && c.io_error) {
-        close_out(&c, r, tmpname, 0, &s);
+        run_close_out(&c, r, tmpname, 0, &s);
         if (tmpname == NULL)
             fprintf(stderr, "hamlie: error: writing to standard output failed\n");
         rc = CLI_ERROR;
     } else if (st != HL_OK && !stopped) {
-        csv_flush(&c);
+        run_csv_flush(&c);
         cli_fail(&err);
         if (s.nsteps > 0 && (s.failed || s.steps > 0))
             fprintf(stderr, "hamlie: the run stopped after step %ld of %ld (t = %.17g)\n",
                     s.steps, s.nsteps, s.t);
         if (want_csv)
-            close_out(&c, r, tmpname, 0, &s);
+            run_close_out(&c, r, tmpname, 0, &s);
         rc = CLI_ERROR;
     } else if (stopped) {
         fprintf(stderr, "hamlie run: interrupted after step %ld of %ld (t = %.17g)\n", s.steps,
                 s.nsteps, s.t);
-        rc = want_csv ? close_out(&c, r, tmpname, 0, &s) : CLI_OK;
+        rc = want_csv ? run_close_out(&c, r, tmpname, 0, &s) : CLI_OK;
     } else {
         /* the figures first: if they cannot be drawn, no CSV file is left */
-        figures = c.plot != NULL ? plot_write(&c, r) : 0;
+        figures = c.plot != NULL ? run_plot_write(&c, r) : 0;
         if (figures < 0) {
             if (tmpname != NULL) {
                 fclose(c.fp);
@@ -558,7 +340,7 @@ static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts
             }
             rc = CLI_ERROR;
         } else
-            rc = want_csv ? close_out(&c, r, tmpname, 1, &s) : CLI_OK;
+            rc = want_csv ? run_close_out(&c, r, tmpname, 1, &s) : CLI_OK;
         if (rc == CLI_OK && c.plot != NULL && o->format != CLI_JSON)
             fprintf(stderr, "hamlie: drew %d figure files in %s\n", figures, r->plot);
     }
@@ -592,7 +374,7 @@ static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts
     if (rc == CLI_OK && stopped)
         rc = CLI_INTERRUPTED;
     free(tmpname);
-    plot_close(&c);
+    run_plot_close(&c);
     hl_buf_clear(&c.buf);
     return rc;
 }
@@ -728,7 +510,7 @@ static int csv_row_arb(const hl_run_row_arb *row, void *arg)
     hl_buf_putc(b, '\n');
     c->rows++;
     if (b->len >= 1 << 16)
-        csv_flush(c);
+        run_csv_flush(c);
     return c->io_error ? HL_EIO : 0;
 }
 
@@ -777,10 +559,10 @@ static int do_run_arb(hl_run *run, hl_system *sys, const run_opts *r, const cli_
         rc = init_fail(&err, r->init);
         goto done;
     }
-    if (want_csv && (rc = open_out(c, r, &tmpname)) != CLI_OK)
+    if (want_csv && (rc = run_open_out(c, r, &tmpname)) != CLI_OK)
         goto done;
     if (want_csv)
-        csv_header(c, sys, r);
+        run_csv_header(c, sys, r);
     cli_progress p;
     start_progress(&p, run, r, o, n, dt);
     double w0 = now();
@@ -792,18 +574,18 @@ static int do_run_arb(hl_run *run, hl_system *sys, const run_opts *r, const cli_
     cli_progress_end(&p);
     int stopped = st == HL_ESTOP;
     if (st != HL_OK && !stopped) {
-        csv_flush(c);
+        run_csv_flush(c);
         if (!(st == HL_EIO && c->io_error))
             cli_fail(&err);
         if (want_csv)
-            close_out(c, r, tmpname, 0, &s);
+            run_close_out(c, r, tmpname, 0, &s);
         rc = CLI_ERROR;
         goto done;
     }
     if (stopped)
         fprintf(stderr, "hamlie run: interrupted after row %ld of %ld (t = %.17g)\n", s.steps,
                 n, s.t);
-    rc = want_csv ? close_out(c, r, tmpname, !stopped, &s) : CLI_OK;
+    rc = want_csv ? run_close_out(c, r, tmpname, !stopped, &s) : CLI_OK;
     if (rc == CLI_OK && o->format != CLI_JSON && r->out != NULL && !stopped) {
         hl_buf out;
         hl_buf_init(&out);

@@ -240,6 +240,26 @@ int cli_main(int argc, char **argv, const cli_spec *spec)
     return rc;
 }
 
+const char *cli_phase_name(const hl_system *sys, int i)
+{
+    int N = hl_system_ndof(sys);
+    return i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N);
+}
+
+int cli_check_scheme_source(const cli_opts *o, const char *scheme, const char *equations,
+                            const char *why_H, const cli_command *cmd)
+{
+    if (o->H == NULL)
+        return cli_usage(cmd, "missing -H: %s", why_H);
+    if (o->nargs > 0)
+        return cli_usage(cmd, "unexpected argument '%s'", o->args[0]);
+    int nsrc = (scheme != NULL) + (o->map != NULL) + (equations != NULL);
+    if (nsrc != 1)
+        return cli_usage(cmd, nsrc == 0 ? "give a scheme: --scheme NAME, --map or --equations"
+                                        : "give only one of --scheme, --map and --equations");
+    return -1;
+}
+
 int cli_begin(char ***av, cli_opts *o, hl_system **sys, int argc, char **argv,
               const cli_command *cmd, const cli_begin_spec *spec, void *arg)
 {

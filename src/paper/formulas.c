@@ -16,352 +16,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <flint/fmpq.h>
-
-#include "hamlie/analysis.h"
-#include "hamlie/ham.h"
-#include "hamlie/paper.h"
-#include "hamlie/report.h"
-#include "hamlie/scheme.h"
-#include "hamlie/series.h"
-#include "../base/buf.h"
-
-#define NV 8   /* v_2..v_8 on the oscillator */
-#define NCUB 5 /* v_2..v_5 on the cubic system */
-#define NREL 2 /* schemes on the cubic system the relations are checked on */
-
-/* explicit Euler, and implicit midpoint (an implicit, symplectic scheme): two
- * different schemes, so that a relation cannot hold by a coincidence of one */
-static const char *const REL_SCHEMES[NREL] = {
-    "Q = q + D*Hp(q, p); P = p - D*Hq(q, p)",
-    "(Q-q)/D = Hp((q+Q)/2, (p+P)/2); (P-p)/D = -Hq((q+Q)/2, (p+P)/2)"};
-static const char *const REL_NAMES[NREL] = {"explicit Euler", "implicit midpoint"};
-
-/* The paper's discrete equations, as printed (X, P the next point). */
-static const char EQ_EULER[] = "(X-x)/D = p; (P-p)/D = -x";
-static const char EQ_DG[] = "(X-x)/D = (P^2-p^2)/(2*(P-p)); (P-p)/D = -(X^2-x^2)/(2*(X-x))";
-
-struct hl_paper_work {
-    hl_system *osc, *lin2, *cub;
-    hl_alg *g;                          /* generator, osc */
-    hl_alg *exact_map, *euler_map, *dg_map; /* closed maps, osc */
-    hl_series *psi_exact, *psi_euler, *psi_dg, *psi_cub[NREL];
-    hl_vfields e_exact, e_euler, e_dg, e_cub[NREL];
-    int have_e;      /* bit i: e_{exact,euler,dg,cub} filled */
-    hl_alg *g_cub;   /* generator, cub */
-    hl_series *K_cub[NREL];
-    hl_alg *psiT_cub[NREL]; /* the cubic system's psi truncated after D^NCUB, as elements */
-    int have_cub;           /* e_cub[0 .. have_cub-1] filled */
-    char *euler_map_how, *dg_map_how;
-};
-
-static const char *const NAMES[2] = {"x", "p"};
-
-/* ---- small helpers ------------------------------------------------------ */
-
-static hl_series *series_vec(int m, const hl_alg_ctx *ctx)
-{
-    hl_series *s = hl_xcalloc((size_t)m, sizeof *s);
-    for (int i = 0; i < m; i++)
-        hl_series_init(&s[i], 0, ctx);
-    return s;
-}
-
-static void series_vec_free(hl_series *s, int m, const hl_alg_ctx *ctx)
-{
-    if (s == NULL)
-        return;
-    for (int i = 0; i < m; i++)
-        hl_series_clear(&s[i], ctx);
-    free(s);
-}
-
-/* "a; b" -> out[0], out[1] (or one component when there is no ';'). */
-static int read_comps(hl_alg *out, int ncomp, hl_system *sys, const char *text, hl_error *err)
-{
-    char *t = hl_xstrdup(text), *semi = strchr(t, ';');
-    int st;
-    if ((semi != NULL) != (ncomp == 2)) {
-        free(t);
-        return hl_error_set(err, HL_EPARSE, text, -1, 0,
-                            "expected %d component%s separated by ';'", ncomp,
-                            ncomp == 2 ? "s" : "");
-    }
-    if (semi != NULL)
-        *semi = '\0';
-    st = hl_system_read(&out[0], sys, t, err);
-    if (st == HL_OK && semi != NULL)
-        st = hl_system_read(&out[1], sys, semi + 1, err);
-    free(t);
-    return st;
-}
-
-static void alg_D(hl_alg *r, hl_system *sys)
-{
-    hl_alg_gen(r, hl_system_var_D(sys), hl_system_ctx(sys));
-}
-
-static void alg_z(hl_alg *r, int i, hl_system *sys)
-{
-    hl_alg_gen(r, i == 0 ? hl_system_var_q(sys, 0) : hl_system_var_p(sys, 0),
-               hl_system_ctx(sys));
-}
-
-/* Solve two equations "lhs = rhs; lhs = rhs", linear in the next point
- * (X, P) once put in canonical form, for the map: exact Cramer's rule in the
- * two-dof context lin2 (where X and P are symbols), then read back into the
- * oscillator's context through hamlie's text syntax. */
-static int solve_linear_map(hl_alg *map, struct hl_paper_work *w, const char *eqs,
-                            hl_error *err)
-{
-    hl_system *L = w->lin2;
-    hl_alg_ctx *ctx = hl_system_ctx(L);
-    int vX = hl_system_var_q(L, 1), vP = hl_system_var_p(L, 1);
-    hl_alg *F = hl_alg_vec_new(2, ctx), *a = hl_alg_vec_new(2, ctx),
-           *b = hl_alg_vec_new(2, ctx), *c = hl_alg_vec_new(2, ctx),
-           *t = hl_alg_vec_new(4, ctx), zero[2];
-    int st = HL_OK, vars[2] = {vX, vP};
-    char *copy = hl_xstrdup(eqs), *parts[2] = {copy, strchr(copy, ';')};
-    hl_alg_init(&zero[0], ctx);
-    hl_alg_init(&zero[1], ctx);
-    if (parts[1] == NULL) {
-        st = hl_error_set(err, HL_EINVAL, eqs, -1, 0, "expected two equations");
-        goto done;
-    }
-    *parts[1]++ = '\0';
-    for (int i = 0; i < 2 && st == HL_OK; i++) {
-        char *eq = strchr(parts[i], '=');
-        hl_buf b2;
-        if (eq == NULL) {
-            st = hl_error_set(err, HL_EINVAL, eqs, -1, 0, "equation %d has no '='", i + 1);
-            break;
-        }
-        *eq = '\0';
-        hl_buf_init(&b2);
-        hl_buf_printf(&b2, "(%s) - (%s)", parts[i], eq + 1);
-        st = hl_system_read(&F[i], L, b2.s, err);
-        hl_buf_clear(&b2);
-        if (st == HL_OK)
-            st = hl_alg_diff(&a[i], &F[i], vX, ctx, err);
-        if (st == HL_OK)
-            st = hl_alg_diff(&b[i], &F[i], vP, ctx, err);
-        if (st == HL_OK)
-            st = hl_alg_subst(&c[i], &F[i], 2, vars, zero, ctx, err);
-        if (st == HL_OK && (hl_alg_depends_on(&a[i], vX, ctx) || hl_alg_depends_on(&a[i], vP, ctx) ||
-                            hl_alg_depends_on(&b[i], vX, ctx) || hl_alg_depends_on(&b[i], vP, ctx)))
-            st = hl_error_set(err, HL_EUNSUP, eqs, -1, 0,
-                              "equation %d is not linear in the next point", i + 1);
-    }
-    if (st != HL_OK)
-        goto done;
-    /* det = a1 b2 - a2 b1; X = (b1 c2 - b2 c1)/det; P = (a2 c1 - a1 c2)/det */
-    hl_alg_mul(&t[0], &a[0], &b[1], ctx);
-    hl_alg_mul(&t[1], &a[1], &b[0], ctx);
-    hl_alg_sub(&t[0], &t[0], &t[1], ctx);
-    if (hl_alg_is_zero(&t[0], ctx)) {
-        st = hl_error_set(err, HL_EDOM, eqs, -1, 0, "the equations do not determine (X, P)");
-        goto done;
-    }
-    hl_alg_mul(&t[1], &b[0], &c[1], ctx);
-    hl_alg_mul(&t[2], &b[1], &c[0], ctx);
-    hl_alg_sub(&t[1], &t[1], &t[2], ctx);
-    hl_alg_mul(&t[2], &a[1], &c[0], ctx);
-    hl_alg_mul(&t[3], &a[0], &c[1], ctx);
-    hl_alg_sub(&t[2], &t[2], &t[3], ctx);
-    for (int i = 0; i < 2 && st == HL_OK; i++) {
-        if ((st = hl_alg_div(&t[1 + i], &t[1 + i], &t[0], ctx, err)) != HL_OK)
-            break;
-        char *txt = hl_format_alg(&t[1 + i], ctx, hl_system_pool(L), HL_STYLE_TEXT);
-        st = hl_system_read(&map[i], w->osc, txt, err);
-        free(txt);
-    }
-done:
-    free(copy);
-    hl_alg_clear(&zero[0], ctx);
-    hl_alg_clear(&zero[1], ctx);
-    hl_alg_vec_free(F, 2, ctx);
-    hl_alg_vec_free(a, 2, ctx);
-    hl_alg_vec_free(b, 2, ctx);
-    hl_alg_vec_free(c, 2, ctx);
-    hl_alg_vec_free(t, 4, ctx);
-    return st;
-}
-
-/* Does the closed map agree with the series psi to O(D^n)? (-1: could not
- * expand the map) */
-static int map_matches_series(const hl_alg *map, const hl_series *psi, int n, hl_system *sys)
-{
-    hl_alg_ctx *ctx = hl_system_ctx(sys);
-    int ok = 1;
-    for (int i = 0; i < 2 && ok == 1; i++) {
-        hl_series s, t;
-        hl_series_init(&s, 0, ctx);
-        hl_series_init(&t, 0, ctx);
-        if (hl_series_from_alg(&s, &map[i], hl_system_var_D(sys), n, ctx, NULL) != HL_OK)
-            ok = -1;
-        else {
-            hl_series_set(&t, &psi[i], ctx);
-            hl_series_set_length(&t, n, ctx);
-            ok = hl_series_equal(&s, &t, ctx);
-        }
-        hl_series_clear(&s, ctx);
-        hl_series_clear(&t, ctx);
-    }
-    return ok;
-}
-
-static int expand_catalog(hl_series **psi, hl_vfields *e, const char *name, const char *text,
-                          hl_system *sys, int n, hl_error *err)
-{
-    hl_scheme *s = NULL;
-    memset(e, 0, sizeof *e);
-    int st = name != NULL ? hl_scheme_new(&s, name, 0, sys, err)
-                          : hl_scheme_from_text(&s, text, sys, err);
-    *psi = series_vec(2, hl_system_ctx(sys));
-    if (st == HL_OK)
-        st = hl_scheme_expand(*psi, s, n + 1, err);
-    if (st == HL_OK)
-        st = hl_vfields_compute(e, *psi, sys, n, err);
-    hl_scheme_free(s);
-    return st;
-}
-
-static int new_system(hl_system **sys, const char *H, const char *pairs, hl_error *err)
-{
-    hl_system_spec spec = {H, pairs, NULL, NULL, NULL};
-    return hl_system_new(sys, &spec, err);
-}
-
-static void work_clear(struct hl_paper_work *w)
-{
-    if (w->osc != NULL) {
-        hl_alg_ctx *ctx = hl_system_ctx(w->osc);
-        hl_alg_vec_free(w->g, 2, ctx);
-        hl_alg_vec_free(w->exact_map, 2, ctx);
-        hl_alg_vec_free(w->euler_map, 2, ctx);
-        hl_alg_vec_free(w->dg_map, 2, ctx);
-        series_vec_free(w->psi_exact, 2, ctx);
-        series_vec_free(w->psi_euler, 2, ctx);
-        series_vec_free(w->psi_dg, 2, ctx);
-        if (w->have_e & 1)
-            hl_vfields_clear(&w->e_exact, w->osc);
-        if (w->have_e & 2)
-            hl_vfields_clear(&w->e_euler, w->osc);
-        if (w->have_e & 4)
-            hl_vfields_clear(&w->e_dg, w->osc);
-    }
-    if (w->cub != NULL) {
-        hl_alg_ctx *ctx = hl_system_ctx(w->cub);
-        for (int s = 0; s < NREL; s++) {
-            series_vec_free(w->psi_cub[s], 2, ctx);
-            series_vec_free(w->K_cub[s], 2, ctx);
-            hl_alg_vec_free(w->psiT_cub[s], 2, ctx);
-        }
-        for (int s = 0; s < w->have_cub; s++)
-            hl_vfields_clear(&w->e_cub[s], w->cub);
-        hl_alg_vec_free(w->g_cub, 2, ctx);
-    }
-    free(w->euler_map_how);
-    free(w->dg_map_how);
-    hl_system_free(w->osc);
-    hl_system_free(w->lin2);
-    hl_system_free(w->cub);
-    memset(w, 0, sizeof *w);
-}
-
-static char *map_how(const char *eqs, int match, const char *scheme)
-{
-    hl_buf b;
-    hl_buf_init(&b);
-    hl_buf_printf(&b, "solved exactly (Cramer) from the printed equations %s; its Taylor "
-                      "series %s the catalog scheme %s expanded to O(D^%d)", eqs,
-                  match == 1 ? "equals" : match == 0 ? "DIFFERS from" : "(not expandable) vs",
-                  scheme, NV + 1);
-    return hl_buf_take(&b);
-}
-
-static int work_init(struct hl_paper_work *w, hl_error *err)
-{
-    int st;
-    memset(w, 0, sizeof *w);
-    if ((st = new_system(&w->osc, "(p^2+x^2)/2", "x:p", err)) != HL_OK ||
-        (st = new_system(&w->lin2, "(p^2+x^2)/2 + (P^2+X^2)/2", "x:p,X:P", err)) != HL_OK ||
-        (st = new_system(&w->cub, "(p^2+x^2)/2 + x^3/3", "x:p", err)) != HL_OK)
-        return st;
-    hl_alg_ctx *ctx = hl_system_ctx(w->osc);
-    w->g = hl_alg_vec_new(2, ctx);
-    w->exact_map = hl_alg_vec_new(2, ctx);
-    w->euler_map = hl_alg_vec_new(2, ctx);
-    w->dg_map = hl_alg_vec_new(2, ctx);
-    if ((st = hl_generator(&w->g[0], &w->g[1], w->osc, err)) != HL_OK)
-        return st;
-    st = expand_catalog(&w->psi_exact, &w->e_exact, "exact-rotation", NULL, w->osc, NV, err);
-    w->have_e |= 1;
-    if (st != HL_OK)
-        return st;
-    st = expand_catalog(&w->psi_euler, &w->e_euler, "paper-euler", NULL, w->osc, NV, err);
-    w->have_e |= 2;
-    if (st != HL_OK)
-        return st;
-    st = expand_catalog(&w->psi_dg, &w->e_dg, "paper-dg", NULL, w->osc, NV, err);
-    w->have_e |= 4;
-    if (st != HL_OK)
-        return st;
-    {
-        hl_scheme *s = NULL;
-        if ((st = hl_scheme_new(&s, "exact-rotation", 0, w->osc, err)) == HL_OK)
-            st = hl_errors_scheme_map(w->exact_map, s, err);
-        hl_scheme_free(s);
-        if (st != HL_OK)
-            return st;
-    }
-    if ((st = solve_linear_map(w->euler_map, w, EQ_EULER, err)) != HL_OK ||
-        (st = solve_linear_map(w->dg_map, w, EQ_DG, err)) != HL_OK)
-        return st;
-    w->euler_map_how = map_how(EQ_EULER, map_matches_series(w->euler_map, w->psi_euler, NV + 1,
-                                                            w->osc), "paper-euler");
-    w->dg_map_how = map_how(EQ_DG, map_matches_series(w->dg_map, w->psi_dg, NV + 1, w->osc),
-                            "paper-dg");
-    /* the nonlinear test system for the relations between K and the v_k */
-    hl_alg_ctx *cc = hl_system_ctx(w->cub);
-    int vars[2] = {hl_system_var_q(w->cub, 0), hl_system_var_p(w->cub, 0)};
-    w->g_cub = hl_alg_vec_new(2, cc);
-    if ((st = hl_generator(&w->g_cub[0], &w->g_cub[1], w->cub, err)) != HL_OK)
-        return st;
-    for (int s = 0; s < NREL; s++) {
-        st = expand_catalog(&w->psi_cub[s], &w->e_cub[s], NULL, REL_SCHEMES[s], w->cub, NCUB,
-                            err);
-        w->have_cub = s + 1;
-        if (st != HL_OK)
-            return st;
-        w->psiT_cub[s] = hl_alg_vec_new(2, cc);
-        for (int i = 0; i < 2; i++)
-            hl_series_to_alg(&w->psiT_cub[s][i], &w->psi_cub[s][i], hl_system_var_D(w->cub), cc);
-        w->K_cub[s] = series_vec(2, cc);
-        st = hl_series_scheme_K(w->K_cub[s], 2, w->psi_cub[s], vars, hl_system_var_D(w->cub), cc,
-                                err);
-        if (st != HL_OK)
-            return st;
-    }
-    return HL_OK;
-}
-
-static char *strf(const char *fmt, const char *a)
-{
-    hl_buf b;
-    hl_buf_init(&b);
-    hl_buf_printf(&b, fmt, a);
-    return hl_buf_take(&b);
-}
-
-static const char *agree_text(const hl_vfields *e)
-{
-    return e->agree ? "agree" : "DISAGREE";
-}
+#include "paper/formulas_impl.h"
 
 /* ---- the rows' computations --------------------------------------------- */
-
-typedef struct hl_paper_formula_row row_t;
 
 static int f_generator(struct hl_paper_work *w, const row_t *r, hl_alg *out, char **how,
                        hl_error *err)
@@ -376,20 +33,20 @@ static int f_generator(struct hl_paper_work *w, const row_t *r, hl_alg *out, cha
 static int matches_flow(const hl_alg *map, struct hl_paper_work *w, int n)
 {
     hl_alg_ctx *ctx = hl_system_ctx(w->osc);
-    hl_series *s = series_vec(2, ctx);
+    hl_series *s = hl_series_vec_new(2, 0, ctx);
     hl_alg z, l;
     int ok = 1;
     hl_alg_init(&z, ctx);
     hl_alg_init(&l, ctx);
     for (int i = 0; i < 2 && ok == 1; i++) {
-        alg_z(&z, i, w->osc);
+        paper_alg_z(&z, i, w->osc);
         if (hl_lie_series(&l, &z, n - 1, w->osc, NULL) != HL_OK ||
             hl_series_from_alg(&s[i], &l, hl_system_var_D(w->osc), n, ctx, NULL) != HL_OK)
             ok = -1;
     }
     if (ok == 1)
-        ok = map_matches_series(map, s, n, w->osc);
-    series_vec_free(s, 2, ctx);
+        ok = paper_map_matches_series(map, s, n, w->osc);
+    hl_series_vec_free(s, 2, ctx);
     hl_alg_clear(&z, ctx);
     hl_alg_clear(&l, ctx);
     return ok;
@@ -404,9 +61,9 @@ static int f_exact_map(struct hl_paper_work *w, const row_t *r, hl_alg *out, cha
     int ok = matches_flow(w->exact_map, w, 13);
     hl_alg_set(&out[0], &w->exact_map[0], ctx);
     hl_alg_set(&out[1], &w->exact_map[1], ctx);
-    *how = strf("the map of catalog scheme exact-rotation (sec. 3 construction); %s", ok == 1
-                ? "its Taylor series equals the Lie series exp(D g) z to O(D^13)"
-                : "its Taylor series DIFFERS from the Lie series exp(D g) z");
+    *how = paper_strf("the map of catalog scheme exact-rotation (sec. 3 construction); %s",
+                      ok == 1 ? "its Taylor series equals the Lie series exp(D g) z to O(D^13)"
+                              : "its Taylor series DIFFERS from the Lie series exp(D g) z");
     return HL_OK;
 }
 
@@ -418,9 +75,9 @@ static int eqs_of(hl_alg *out, const hl_alg *map, hl_system *sys, hl_error *err)
     int st = HL_OK;
     hl_alg_init(&z, ctx);
     hl_alg_init(&D, ctx);
-    alg_D(&D, sys);
+    paper_alg_D(&D, sys);
     for (int i = 0; i < 2 && st == HL_OK; i++) {
-        alg_z(&z, i, sys);
+        paper_alg_z(&z, i, sys);
         hl_alg_sub(&out[i], &map[i], &z, ctx);
         st = hl_alg_div(&out[i], &out[i], &D, ctx, err);
     }
@@ -452,12 +109,12 @@ static int f_exact_w(struct hl_paper_work *w, const row_t *r, hl_alg *out, char 
     hl_alg_zero(&out[1], ctx);
     for (int k = 2; k <= NV; k++) {
         /* D^k/k! v_k */
-        alg_D(&Dk, w->osc);
+        paper_alg_D(&Dk, w->osc);
         hl_alg_pow_si(&Dk, &Dk, k, ctx, NULL);
         fmpz_fac_ui(fmpq_denref(f), (ulong)k);
         fmpz_one(fmpq_numref(f));
         for (int i = 0; i < 2; i++) {
-            hl_alg_mul(&t, &Dk, &hl_vfields_v(&w->e_exact, k)[i], ctx);
+            hl_alg_mul(&t, &Dk, &hl_vfields_v(&w->exact.a->fields, k)[i], ctx);
             hl_alg_scalar_mul_fmpq(&t, &t, f, ctx);
             hl_alg_add(&out[i], &out[i], &t, ctx);
         }
@@ -467,9 +124,10 @@ static int f_exact_w(struct hl_paper_work *w, const row_t *r, hl_alg *out, char 
     hl_alg_clear(&Dk, ctx);
     hl_buf b;
     hl_buf_init(&b);
-    hl_buf_printf(&b, "sum_{k=2}^{%d} D^k/k! v_k of exact-rotation, v_k computed directly and "
-                      "from K: the two %s",
-                  NV, agree_text(&w->e_exact));
+    hl_buf_printf(&b,
+                  "sum_{k=2}^{%d} D^k/k! v_k of exact-rotation, v_k computed directly and "
+                  "from K: the two %s",
+                  NV, paper_agree_text(&w->exact.a->fields));
     *how = hl_buf_take(&b);
     return HL_OK;
 }
@@ -501,7 +159,7 @@ static int f_euler_eqs(struct hl_paper_work *w, const row_t *r, hl_alg *out, cha
     for (int i = 0; i < 2 && st == HL_OK; i++) {
         hl_alg z;
         hl_alg_init(&z, ctx);
-        alg_z(&z, i, w->osc);
+        paper_alg_z(&z, i, w->osc);
         st = hl_lie_series(&m[i], &z, 1, w->osc, err);
         hl_alg_clear(&z, ctx);
     }
@@ -519,10 +177,10 @@ static int f_K(struct hl_paper_work *w, const hl_alg *map, const hl_series *psi,
         return st;
     /* the same from the series of the catalog scheme (hl_series_scheme_K) */
     hl_alg_ctx *ctx = hl_system_ctx(w->osc);
-    hl_series *K = series_vec(2, ctx);
+    hl_series *K = hl_series_vec_new(2, 0, ctx);
     int vars[2] = {hl_system_var_q(w->osc, 0), hl_system_var_p(w->osc, 0)};
     int ok = hl_series_scheme_K(K, 2, psi, vars, hl_system_var_D(w->osc), ctx, NULL) == HL_OK
-                 ? map_matches_series(out, K, K[0].n < K[1].n ? K[0].n : K[1].n, w->osc)
+                 ? paper_map_matches_series(out, K, K[0].n < K[1].n ? K[0].n : K[1].n, w->osc)
                  : -1;
     hl_buf b;
     hl_buf_init(&b);
@@ -532,7 +190,7 @@ static int f_K(struct hl_paper_work *w, const hl_alg *map, const hl_series *psi,
                   ok == 1 ? "equals" : ok == 0 ? "DIFFERS from" : "not compared with",
                   K[0].n);
     *how = hl_buf_take(&b);
-    series_vec_free(K, 2, ctx);
+    hl_series_vec_free(K, 2, ctx);
     return HL_OK;
 }
 
@@ -540,14 +198,14 @@ static int f_euler_K(struct hl_paper_work *w, const row_t *r, hl_alg *out, char 
                      hl_error *err)
 {
     (void)r;
-    return f_K(w, w->euler_map, w->psi_euler, out, how, err);
+    return f_K(w, w->euler_map, w->euler.a->psi, out, how, err);
 }
 
 static int f_dg_K(struct hl_paper_work *w, const row_t *r, hl_alg *out, char **how,
                   hl_error *err)
 {
     (void)r;
-    return f_K(w, w->dg_map, w->psi_dg, out, how, err);
+    return f_K(w, w->dg_map, w->dg.a->psi, out, how, err);
 }
 
 static int f_v(const hl_vfields *e, const char *scheme, const char *closed, hl_system *sys,
@@ -556,9 +214,10 @@ static int f_v(const hl_vfields *e, const char *scheme, const char *closed, hl_s
     copy2(out, hl_vfields_v(e, r->arg), sys);
     hl_buf b;
     hl_buf_init(&b);
-    hl_buf_printf(&b, "v_%d of %s: directly (expansion minus the Lie series) and from K alone: "
-                      "the two %s; closed form: %s",
-                  r->arg, scheme, agree_text(e), closed);
+    hl_buf_printf(&b,
+                  "v_%d of %s: directly (expansion minus the Lie series) and from K alone: "
+                  "the two %s; closed form: %s",
+                  r->arg, scheme, paper_agree_text(e), closed);
     *how = hl_buf_take(&b);
     return HL_OK;
 }
@@ -567,16 +226,16 @@ static int f_euler_v(struct hl_paper_work *w, const row_t *r, hl_alg *out, char 
                      hl_error *err)
 {
     (void)err;
-    return f_v(&w->e_euler, "paper-euler", "psi = sqrt(1+D^2) R(atan D) (tested in t-formulas)",
-               w->osc, r, out, how);
+    return f_v(&w->euler.a->fields, "paper-euler",
+               "psi = sqrt(1+D^2) R(atan D) (tested in t-formulas)", w->osc, r, out, how);
 }
 
 static int f_dg_v(struct hl_paper_work *w, const row_t *r, hl_alg *out, char **how,
                   hl_error *err)
 {
     (void)err;
-    return f_v(&w->e_dg, "paper-dg", "psi = R(2 atan(D/2)) (tested in t-formulas)", w->osc, r,
-               out, how);
+    return f_v(&w->dg.a->fields, "paper-dg", "psi = R(2 atan(D/2)) (tested in t-formulas)", w->osc,
+               r, out, how);
 }
 
 static int f_rk4_map(struct hl_paper_work *w, const row_t *r, hl_alg *out, char **how,
@@ -584,22 +243,20 @@ static int f_rk4_map(struct hl_paper_work *w, const row_t *r, hl_alg *out, char 
 {
     (void)r;
     copy2(out, w->euler_map, w->osc);
-    hl_errors_correct_map(out, &w->e_euler, 4, w->osc);
+    hl_errors_correct_map(out, &w->euler.a->fields, 4, w->osc);
     /* against the catalog's RK4 (a Butcher tableau), expanded */
-    hl_series *psi = NULL;
-    hl_vfields e;
-    int st = expand_catalog(&psi, &e, "rk4", NULL, w->osc, NV, err);
-    int ok = st == HL_OK ? map_matches_series(out, psi, NV + 1, w->osc) : -1;
+    analysed rk4 = {NULL, NULL};
+    int st = paper_expand_catalog(&rk4, "rk4", NULL, 0, w->osc, NV, err);
+    int ok = st == HL_OK ? paper_map_matches_series(out, rk4.a->psi, NV + 1, w->osc) : -1;
     hl_buf b;
     hl_buf_init(&b);
     hl_buf_printf(&b, "Euler's map minus D^2/2 v_2 + D^3/6 v_3 + D^4/24 v_4 "
                       "(hl_errors_correct_map); %s catalog rk4 expanded to O(D^%d)",
                   ok == 1 ? "equals" : ok == 0 ? "DIFFERS from" : "not compared with", NV + 1);
     if (st == HL_OK)
-        hl_buf_printf(&b, "; rk4 re-analysed: order %d", e.order);
+        hl_buf_printf(&b, "; rk4 re-analysed: order %d", rk4.a->fields.order);
     *how = hl_buf_take(&b);
-    hl_vfields_clear(&e, w->osc);
-    series_vec_free(psi, 2, hl_system_ctx(w->osc));
+    paper_analysed_clear(&rk4);
     return st;
 }
 
@@ -612,7 +269,7 @@ static int f_rk4_eqs(struct hl_paper_work *w, const row_t *r, hl_alg *out, char 
     int st = f_rk4_map(w, r, m, &h, err);
     if (st == HL_OK)
         st = eqs_of(out, m, w->osc, err);
-    *how = strf("((X - x)/D, (P - p)/D) of the corrected Euler map; %s", h != NULL ? h : "");
+    *how = paper_strf("((X - x)/D, (P - p)/D) of the corrected Euler map; %s", h != NULL ? h : "");
     free(h);
     hl_alg_vec_free(m, 2, ctx);
     return st;
@@ -638,7 +295,7 @@ static int f_dg_inverse(struct hl_paper_work *w, const row_t *r, hl_alg *out, ch
     int vD = hl_system_var_D(w->osc), st;
     int vars[2] = {hl_system_var_q(w->osc, 0), hl_system_var_p(w->osc, 0)};
     hl_alg_init(&mD, ctx);
-    alg_D(&mD, w->osc);
+    paper_alg_D(&mD, w->osc);
     hl_alg_neg(&mD, &mD, ctx);
     st = hl_alg_subst(&m[0], &w->dg_map[0], 1, &vD, &mD, ctx, err);
     if (st == HL_OK)
@@ -656,14 +313,13 @@ static int f_dg_sign(struct hl_paper_work *w, const row_t *r, hl_alg *out, char 
 {
     (void)r;
     hl_alg_ctx *ctx = hl_system_ctx(w->osc);
-    hl_errfield F;
-    int m = w->e_dg.leading;
-    int st = hl_errfield_classify(&F, hl_vfields_v(&w->e_dg, m), w->osc, err);
-    if (st != HL_OK)
-        return st;
+    (void)err;
+    const hl_analysis *a = w->dg.a;
+    int m = a->fields.leading;
     fmpq_t c;
     fmpq_init(c);
-    if (F.kind == HL_ERRFIELD_TIME_SHIFT && hl_alg_is_fmpq(&F.lambda, c, ctx)) {
+    if (a->have_leading && a->leading.kind == HL_ERRFIELD_TIME_SHIFT &&
+        hl_alg_is_fmpq(&a->leading.lambda, c, ctx)) {
         hl_alg_set_si(&out[0], fmpq_sgn(c), ctx);
         char *cs = fmpq_get_str(NULL, 10, c);
         hl_buf b;
@@ -678,7 +334,6 @@ static int f_dg_sign(struct hl_paper_work *w, const row_t *r, hl_alg *out, char 
         *how = hl_xstrdup("the leading error is not a constant time shift");
     }
     fmpq_clear(c);
-    hl_errfield_clear(&F, w->osc);
     return HL_OK;
 }
 
@@ -713,9 +368,10 @@ static int f_dg_two(struct hl_paper_work *w, const row_t *r, hl_alg *out, char *
         }
         ok = st == HL_OK && hl_alg_equal(&m[0], &m[2], ctx) && hl_alg_equal(&m[1], &m[3], ctx);
     }
-    *how = strf("tan(tau/2) = M12/(1 + M11) = D/2 for the DG map (a rotation); D' with "
-                "r(D') = 2r/(1 - r^2) (hl_errors_time_closed); psi_D o psi_D = psi_{D'} "
-                "by exact substitution: %s", ok ? "yes" : "NO");
+    *how = paper_strf("tan(tau/2) = M12/(1 + M11) = D/2 for the DG map (a rotation); D' with "
+                      "r(D') = 2r/(1 - r^2) (hl_errors_time_closed); psi_D o psi_D = psi_{D'} "
+                      "by exact substitution: %s",
+                      ok ? "yes" : "NO");
     hl_alg_vec_free(t3, 3, ctx);
     hl_alg_vec_free(m, 4, ctx);
     return st;
@@ -724,33 +380,32 @@ static int f_dg_two(struct hl_paper_work *w, const row_t *r, hl_alg *out, char *
 static int dg_tau_how(char **how, const char *what, struct hl_paper_work *w)
 {
     hl_alg_ctx *ctx = hl_system_ctx(w->osc);
-    hl_series tau;
-    int ok = 0, fk = 0;
-    hl_series_init(&tau, 0, ctx);
-    int st = hl_errors_time_series(&tau, &ok, &fk, w->psi_dg, w->osc, NV, NULL);
+    const hl_analysis *an = w->dg.a; /* its tau(D) solved order by order (HL_ANALYSIS_TIME) */
+    int ok = an->tried_tau && an->tau_ok;
+    const hl_series *tau = &an->tau;
     hl_buf b;
     hl_buf_init(&b);
-    hl_buf_printf(&b, "%s; closed form: the DG map is the rotation by tau = 2 atan(D/2) "
-                      "(hl_errors_time_closed); independently the series tau(D) with psi = "
-                      "exp(tau g) solved order by order from the scheme's expansion %s",
-                  what, st == HL_OK && ok ? "is a pure time shift to O(D^9)" : "FAILED");
-    if (st == HL_OK && ok) {
+    hl_buf_printf(&b,
+                  "%s; closed form: the DG map is the rotation by tau = 2 atan(D/2) "
+                  "(hl_errors_time_closed); independently the series tau(D) with psi = "
+                  "exp(tau g) solved order by order from the scheme's expansion %s",
+                  what, ok ? "is a pure time shift to O(D^9)" : "FAILED");
+    if (ok) {
         /* compare with the Taylor series of 2 atan(D/2) */
         hl_alg a;
         hl_series s;
         hl_alg_init(&a, ctx);
         hl_series_init(&s, 0, ctx);
-        int same = hl_system_read(&a, w->osc, "2*atan(D/2)", NULL) == HL_OK &&
-                   hl_series_from_alg(&s, &a, hl_system_var_D(w->osc), tau.n, ctx, NULL) ==
-                       HL_OK &&
-                   hl_series_equal(&s, &tau, ctx);
+        int same =
+            hl_system_read(&a, w->osc, "2*atan(D/2)", NULL) == HL_OK &&
+            hl_series_from_alg(&s, &a, hl_system_var_D(w->osc), tau->n, ctx, NULL) == HL_OK &&
+            hl_series_equal(&s, tau, ctx);
         hl_buf_printf(&b, " and %s 2 atan(D/2)", same ? "equals the Taylor series of"
                                                       : "DIFFERS from");
         hl_alg_clear(&a, ctx);
         hl_series_clear(&s, ctx);
     }
     *how = hl_buf_take(&b);
-    hl_series_clear(&tau, ctx);
     return HL_OK;
 }
 
@@ -762,7 +417,7 @@ static int f_dg_W(struct hl_paper_work *w, const row_t *r, hl_alg *out, char **h
     hl_alg *t3 = hl_alg_vec_new(3, ctx), D;
     int have = 0, st = dg_time(t3, &have, w, err);
     hl_alg_init(&D, ctx);
-    alg_D(&D, w->osc);
+    paper_alg_D(&D, w->osc);
     if (st == HL_OK)
         hl_alg_sub(&out[0], &t3[0], &D, ctx);
     hl_alg_clear(&D, ctx);
@@ -785,262 +440,58 @@ static int f_dg_T(struct hl_paper_work *w, const row_t *r, hl_alg *out, char **h
     return st;
 }
 
-/* d^k K/dD^k at 0 = k! [D^k] K for test scheme s on the cubic system. */
-static int rel_lhs(hl_alg *out, struct hl_paper_work *w, int k, int s, hl_error *err)
-{
-    hl_alg_ctx *ctx = hl_system_ctx(w->cub);
-    const hl_series *K = w->K_cub[s];
-    if (K[0].n <= k || K[1].n <= k)
-        return hl_error_set(err, HL_ELIMIT, NULL, -1, 0, "K known only to O(D^%d)", K[0].n);
-    fmpq_t f;
-    fmpq_init(f);
-    fmpz_fac_ui(fmpq_numref(f), (ulong)k);
-    for (int i = 0; i < 2; i++)
-        hl_alg_scalar_mul_fmpq(&out[i], &K[i].c[k], f, ctx);
-    fmpq_clear(f);
-    return HL_OK;
-}
-
-/* The left side of the D^k relation on the first test scheme. */
-static int f_rel(struct hl_paper_work *w, const row_t *r, hl_alg *out, char **how,
-                 hl_error *err)
-{
-    int k = r->arg;
-    int st = rel_lhs(out, w, k, 0, err);
-    if (st != HL_OK)
-        return st;
-    hl_buf b;
-    hl_buf_init(&b);
-    hl_buf_printf(&b, "left side d^%dK/dD^%d at 0 = %d! [D^%d] K, K from the scheme's series; "
-                      "checked on H = (p^2+x^2)/2 + x^3/3 (nonlinear) for %s and for %s (the "
-                      "relation must hold for both); the print's right side evaluated with "
-                      "the true v_k (direct and via K: the two %s, %s), read as the paper's "
-                      "(Err) does: operators on functions composed, A o B (z) = A(B(z)), "
-                      "g phi = {phi, H}, v_k phi = k! [D^k] (phi o psi_D - phi o exp(D g)); "
-                      "hamlie itself uses the exact identity K = (d/dD psi)(psi_{-D}), "
-                      "v_k = (k-1)! ([D^(k-1)] K - [D^(k-1)] K~) with psi~ = exp(D g) + "
-                      "sum_{j<k} D^j/j! v_j",
-                  k, k, k, k, REL_NAMES[0], REL_NAMES[1], agree_text(&w->e_cub[0]),
-                  agree_text(&w->e_cub[1]));
-    *how = hl_buf_take(&b);
-    return HL_OK;
-}
-
-/* An operator of the paper's relations applied to a function phi of the
- * cubic system, for test scheme s: g phi = {phi, H}; v_k phi =
- * k! [D^k] (phi(psi_D(z)) - phi(exp(D g) z)) = k! [D^k] phi(psi_D(z)) - g^k phi.
- * This is the paper's reading: in (Err) w_D = psi_D - exp(D g) acts on
- * functions as an operator (not a derivation); on a coordinate, v_k z_i is
- * the field's component. */
-static int apply_op(hl_alg *r, int k, const hl_alg *phi, struct hl_paper_work *w, int sch,
-                    hl_error *err)
-{
-    hl_system *sys = w->cub;
-    hl_alg_ctx *ctx = hl_system_ctx(sys);
-    if (k == 0)
-        return hl_generator_apply(r, phi, sys, err);
-    int vars[2] = {hl_system_var_q(sys, 0), hl_system_var_p(sys, 0)};
-    hl_alg s;
-    hl_alg *terms = hl_alg_vec_new(k + 1, ctx);
-    fmpq_t f;
-    int st;
-    hl_alg_init(&s, ctx);
-    fmpq_init(f);
-    st = hl_alg_subst(&s, phi, 2, vars, w->psiT_cub[sch], ctx, err);
-    if (st == HL_OK)
-        st = hl_alg_coeff(&s, &s, hl_system_var_D(sys), k, ctx, err);
-    if (st == HL_OK)
-        st = hl_lie_terms(terms, phi, k, sys, err);
-    if (st == HL_OK) {
-        fmpz_fac_ui(fmpq_numref(f), (ulong)k);
-        hl_alg_scalar_mul_fmpq(&s, &s, f, ctx);
-        hl_alg_sub(r, &s, &terms[k], ctx);
-    }
-    fmpq_clear(f);
-    hl_alg_clear(&s, ctx);
-    hl_alg_vec_free(terms, k + 1, ctx);
-    return st;
-}
-
-/* The print's right side "+1 v3 -2 g.v2 ..." evaluated on the cubic system
- * for test scheme sch (operators composed: A.B z = A(B(z))).  Term `flip`
- * (0-based; -1: none) is taken with the opposite sign; *nterms gets the
- * number of terms. */
-static int eval_rel(hl_alg *out, int *nterms, struct hl_paper_work *w, int sch,
-                    const char *text, int flip, hl_error *err)
-{
-    hl_system *sys = w->cub;
-    hl_alg_ctx *ctx = hl_system_ctx(sys);
-    char *copy = hl_xstrdup(text), *save = NULL;
-    hl_alg f, t;
-    int st = HL_OK, term = 0;
-    hl_alg_init(&f, ctx);
-    hl_alg_init(&t, ctx);
-    hl_alg_zero(&out[0], ctx);
-    hl_alg_zero(&out[1], ctx);
-    for (char *tok = strtok_r(copy, " ", &save); tok != NULL && st == HL_OK;
-         tok = strtok_r(NULL, " ", &save), term++) {
-        char *word = strtok_r(NULL, " ", &save), *end;
-        long c = strtol(tok, &end, 10);
-        if (*end != '\0' || word == NULL) {
-            st = hl_error_set(err, HL_EPARSE, text, -1, 0,
-                              "expected 'coefficient word' pairs at '%s'", tok);
-            break;
-        }
-        if (term == flip)
-            c = -c;
-        int ops[16], nops = 0;
-        char *wsave = NULL;
-        for (char *op = strtok_r(word, ".", &wsave); op != NULL; op = strtok_r(NULL, ".", &wsave)) {
-            int k = -1;
-            if (strcmp(op, "g") == 0)
-                k = 0;
-            else if (op[0] == 'v' && op[1] >= '2' && op[1] <= '0' + NCUB && op[2] == '\0')
-                k = op[1] - '0';
-            if (k < 0 || nops == 16) {
-                st = hl_error_set(err, HL_EPARSE, text, -1, 0, "unknown operator '%s'", op);
-                break;
-            }
-            ops[nops++] = k;
-        }
-        for (int i = 0; i < 2 && st == HL_OK; i++) {
-            alg_z(&f, i, sys);
-            for (int j = nops - 1; j >= 0 && st == HL_OK; j--)
-                st = apply_op(&f, ops[j], &f, w, sch, err);
-            hl_alg_set_si(&t, c, ctx);
-            hl_alg_mul(&t, &t, &f, ctx);
-            hl_alg_add(&out[i], &out[i], &t, ctx);
-        }
-    }
-    if (nterms != NULL)
-        *nterms = term;
-    free(copy);
-    hl_alg_clear(&f, ctx);
-    hl_alg_clear(&t, ctx);
-    return st;
-}
-
-/* Does the D^k relation `text` (term flip's sign changed) hold for every
- * test scheme from `from` on?  (0 also when it cannot be evaluated.) */
-static int rel_holds(struct hl_paper_work *w, const char *text, int flip, int k, int from)
-{
-    hl_alg_ctx *ctx = hl_system_ctx(w->cub);
-    hl_alg *l = hl_alg_vec_new(2, ctx), *v = hl_alg_vec_new(2, ctx);
-    int ok = 1;
-    for (int s = from; s < NREL && ok; s++)
-        ok = rel_lhs(l, w, k, s, NULL) == HL_OK &&
-             eval_rel(v, NULL, w, s, text, flip, NULL) == HL_OK &&
-             hl_alg_equal(&v[0], &l[0], ctx) && hl_alg_equal(&v[1], &l[1], ctx);
-    hl_alg_vec_free(l, 2, ctx);
-    hl_alg_vec_free(v, 2, ctx);
-    return ok;
-}
-
-/* The term of the print whose sign, changed, makes the relation hold for
- * every test scheme (-1 if no single sign does): a computed correction. */
-static int rel_sign_fix(struct hl_paper_work *w, const char *text, int k, int nterms)
-{
-    for (int j = 0; j < nterms; j++)
-        if (rel_holds(w, text, j, k, 0))
-            return j;
-    return -1;
-}
-
-/* The relation's text with the sign of term j changed, a new string. */
-static char *rel_flipped(const char *text, int j)
-{
-    char *copy = hl_xstrdup(text), *save = NULL;
-    hl_buf b;
-    int term = 0;
-    hl_buf_init(&b);
-    for (char *tok = strtok_r(copy, " ", &save); tok != NULL; tok = strtok_r(NULL, " ", &save)) {
-        char *word = strtok_r(NULL, " ", &save);
-        if (word == NULL)
-            break;
-        long c = strtol(tok, NULL, 10);
-        hl_buf_printf(&b, "%s%+ld %s", term == 0 ? "" : " ", term == j ? -c : c, word);
-        term++;
-    }
-    free(copy);
-    return hl_buf_take(&b);
-}
-
-/* The text of term j of a relation ("-1 v3.g"), copied. */
-static char *rel_term(const char *text, int j)
-{
-    char *copy = hl_xstrdup(text), *save = NULL, *res = NULL;
-    int term = 0;
-    for (char *tok = strtok_r(copy, " ", &save); tok != NULL; tok = strtok_r(NULL, " ", &save)) {
-        char *word = strtok_r(NULL, " ", &save);
-        if (word == NULL)
-            break;
-        if (term++ == j) {
-            hl_buf b;
-            hl_buf_init(&b);
-            hl_buf_printf(&b, "%s %s", tok, word);
-            res = hl_buf_take(&b);
-            break;
-        }
-    }
-    free(copy);
-    return res != NULL ? res : hl_xstrdup("?");
-}
-
 /* ---- the table ------------------------------------------------------------ */
 
 static const row_t ROWS[] = {
-    {"generator", "the evolution generator of H = (p^2+x^2)/2", "sec. 4.1", HL_PAPER_FIELD,
-     "p; -x", f_generator, 0},
+    {"generator", "the evolution generator of H = (p^2+x^2)/2", "sec. 4.1", HL_PAPER_FIELD, "p; -x",
+     f_generator, 0},
     {"exact-map", "exact scheme: the iteration", "sec. 4.1.1; eq. (Exact), sec. 3.2", HL_PAPER_MAP,
      "x*cos(D) + p*sin(D); p*cos(D) - x*sin(D)", f_exact_map, 0},
     {"exact-eqs", "exact scheme: the discrete equations of motion", "sec. 4.1.1", HL_PAPER_EQS,
      "(x*cos(D) + p*sin(D) - x)/D; (p*cos(D) - x*sin(D) - p)/D", f_exact_eqs, 0},
-    {"exact-w", "exact scheme: the error w_D (\"null, as expected\")", "sec. 4.1.1",
-     HL_PAPER_FIELD, "0; 0", f_exact_w, 0},
-    {"euler-eqs", "Euler: the discrete equations of motion", "sec. 4.1.2", HL_PAPER_EQS,
-     "p; -x", f_euler_eqs, 0},
+    {"exact-w", "exact scheme: the error w_D (\"null, as expected\")", "sec. 4.1.1", HL_PAPER_FIELD,
+     "0; 0", f_exact_w, 0},
+    {"euler-eqs", "Euler: the discrete equations of motion", "sec. 4.1.2", HL_PAPER_EQS, "p; -x",
+     f_euler_eqs, 0},
     {"euler-map", "Euler: the iteration", "sec. 4.1.2", HL_PAPER_MAP, "x + D*p; p - D*x",
      f_euler_map, 0},
     {"euler-K", "Euler: K(D) = psi_{-D} o d/dD psi_D", "sec. 4.1.2", HL_PAPER_FIELD,
      "p + D*x; D*p - x", f_euler_K, 0},
-    {"euler-v2", "Euler: the error field v_2", "sec. 4.1.2", HL_PAPER_FIELD, "x; p",
-     f_euler_v, 2},
-    {"euler-v3", "Euler: the error field v_3", "sec. 4.1.2", HL_PAPER_FIELD, "p; x",
-     f_euler_v, 3},
-    {"euler-v4", "Euler: the error field v_4", "sec. 4.1.2", HL_PAPER_FIELD, "-x; -p",
-     f_euler_v, 4},
+    {"euler-v2", "Euler: the error field v_2", "sec. 4.1.2", HL_PAPER_FIELD, "x; p", f_euler_v, 2},
+    {"euler-v3", "Euler: the error field v_3", "sec. 4.1.2", HL_PAPER_FIELD, "p; x", f_euler_v, 3},
+    {"euler-v4", "Euler: the error field v_4", "sec. 4.1.2", HL_PAPER_FIELD, "-x; -p", f_euler_v,
+     4},
     {"rk4-map", "Euler corrected by v_2, v_3, v_4 (= RK4): the iteration", "sec. 4.1.2",
-     HL_PAPER_MAP,
-     "x + D*p - D^2/2*x - D^3/6*p + D^4/24*x; p - D*x - D^2/2*p + D^3/6*x + D^4/24*p",
+     HL_PAPER_MAP, "x + D*p - D^2/2*x - D^3/6*p + D^4/24*x; p - D*x - D^2/2*p + D^3/6*x + D^4/24*p",
      f_rk4_map, 0},
     {"rk4-eqs", "Euler corrected (= RK4): the discrete equations", "sec. 4.1.2", HL_PAPER_EQS,
      "p - D/2*x - D^2/6*p + D^3/24*x; -x - D/2*p + D^2/6*x + D^3/24*p", f_rk4_eqs, 0},
     {"dg-map", "discrete gradient: the iteration", "sec. 4.1.3", HL_PAPER_MAP,
      "(4*x + 4*D*p - D^2*x)/(4 + D^2); (4*p - 4*D*x - D^2*p)/(4 + D^2)", f_dg_map, 0},
-    {"dg-inverse", "discrete gradient: psi_{-D} o psi_D = 1", "sec. 4.1.3", HL_PAPER_MAP,
-     "x; p", f_dg_inverse, 0},
+    {"dg-inverse", "discrete gradient: psi_{-D} o psi_D = 1", "sec. 4.1.3", HL_PAPER_MAP, "x; p",
+     f_dg_inverse, 0},
     {"dg-K", "discrete gradient: K(D) (ErrDG)", "eq. (ErrDG)", HL_PAPER_FIELD,
      "(1 + D^2/(4 + D^2))*p; -(1 + D^2/(4 + D^2))*x", f_dg_K, 0},
     {"dg-v3", "discrete gradient: the error field v_3", "sec. 4.1.3", HL_PAPER_FIELD,
      "-1/2*p; 1/2*x", f_dg_v, 3},
-    {"dg-v4", "discrete gradient: the error field v_4", "sec. 4.1.3", HL_PAPER_FIELD,
-     "2*x; 2*p", f_dg_v, 4},
+    {"dg-v4", "discrete gradient: the error field v_4", "sec. 4.1.3", HL_PAPER_FIELD, "2*x; 2*p",
+     f_dg_v, 4},
     {"dg-v5", "discrete gradient: the error field v_5", "sec. 4.1.3", HL_PAPER_FIELD,
      "13/2*p; -13/2*x", f_dg_v, 5},
     {"dg-ahead", "discrete gradient: \"a point too far in time\" (sign of c in v_3 = c g)",
      "sec. 4.1.3", HL_PAPER_SCALAR, "1", f_dg_sign, 0},
-    {"dg-two-steps", "discrete gradient: two steps D = one step D'", "sec. 4.1.3",
-     HL_PAPER_SCALAR, "8*D/(4 - D^2)", f_dg_two, 0},
+    {"dg-two-steps", "discrete gradient: two steps D = one step D'", "sec. 4.1.3", HL_PAPER_SCALAR,
+     "8*D/(4 - D^2)", f_dg_two, 0},
     {"dg-W", "discrete gradient: W(D) with psi_D = exp((D + W(D)) g)", "sec. 4.1.3",
      HL_PAPER_SCALAR, "D - 2*atan(D/2)", f_dg_W, 0},
     {"dg-T", "discrete gradient reparametrised: T - t", "sec. 4.1.3", HL_PAPER_SCALAR,
      "2*atan(D/2)", f_dg_T, 0},
     {"rel-1", "the D^1 relation between K and the v_k", "sec. 4, after eq. (Err)", HL_PAPER_REL,
-     "+1 v2", f_rel, 1},
+     "+1 v2", paper_f_rel, 1},
     {"rel-2", "the D^2 relation between K and the v_k", "sec. 4, after eq. (Err)", HL_PAPER_REL,
-     "+1 v3 -2 g.v2 +1 v2.g", f_rel, 2},
+     "+1 v3 -2 g.v2 +1 v2.g", paper_f_rel, 2},
     {"rel-3", "the D^3 relation between K and the v_k", "sec. 4, after eq. (Err)", HL_PAPER_REL,
-     "+1 v4 -3 g.v3 +1 v3.g +3 v2.v2 +3 g.g.v2 +3 v2.g.g", f_rel, 3},
+     "+1 v4 -3 g.v3 +1 v3.g +3 v2.v2 +3 g.g.v2 +3 v2.g.g", paper_f_rel, 3},
 };
 
 #define NROWS ((int)(sizeof ROWS / sizeof *ROWS))
@@ -1159,9 +610,9 @@ static int do_row(hl_paper_formula *f, struct hl_paper_work *w, const row_t *r, 
     f->paper_eq = r->paper_eq;
     f->printed = printed_text(r);
     if (r->kind == HL_PAPER_REL)
-        st = eval_rel(pv, &nterms, w, 0, r->printed, -1, err);
+        st = paper_eval_rel(pv, &nterms, w, 0, r->printed, -1, err);
     else
-        st = read_comps(pv, ncomp, sys, r->printed, err);
+        st = paper_read_comps(pv, ncomp, sys, r->printed, err);
     if (st != HL_OK)
         hl_error_prefix(err, "the print of '%s'", r->id);
     if (st == HL_OK && (st = r->compute(w, r, cv, &how, err)) != HL_OK)
@@ -1171,7 +622,7 @@ static int do_row(hl_paper_formula *f, struct hl_paper_work *w, const row_t *r, 
         for (int i = 0; i < ncomp; i++)
             same = same && hl_alg_equal(&pv[i], &cv[i], ctx);
         if (same && r->kind == HL_PAPER_REL) /* and on the other test schemes */
-            same = rel_holds(w, r->printed, -1, r->arg, 1);
+            same = paper_rel_holds(w, r->printed, -1, r->arg, 1);
         f->verdict = same ? HL_VERDICT_AGREES : HL_VERDICT_DIFFERS;
         if (!same && r->kind == HL_PAPER_REL) {
             /* say by how much: left side minus the print's right side */
@@ -1185,14 +636,14 @@ static int do_row(hl_paper_formula *f, struct hl_paper_work *w, const row_t *r, 
             hl_buf_printf(&b, "%s; for %s the left side minus the print's right side "
                               "is %s, so the printed relation does not hold",
                           how, REL_NAMES[0], ds);
-            int j = rel_sign_fix(w, r->printed, r->arg, nterms);
+            int j = paper_rel_sign_fix(w, r->printed, r->arg, nterms);
             if (j >= 0) {
-                char *tj = rel_term(r->printed, j);
+                char *tj = paper_rel_term(r->printed, j);
                 hl_buf_printf(&b, "; it holds for both test schemes with the sign of the "
                                   "term '%s' changed (found by trying each sign)",
                               tj);
                 free(tj);
-                fixed = rel_flipped(r->printed, j);
+                fixed = paper_rel_flipped(r->printed, j);
             } else
                 hl_buf_puts(&b, "; no single sign change makes it hold");
             free(ds);
@@ -1242,14 +693,14 @@ hl_status hl_paper_formulas_compute_rows(hl_paper_formulas *out,
                                          hl_error *err)
 {
     struct hl_paper_work w;
-    int st = work_init(&w, err);
+    int st = paper_work_init(&w, err);
     out->n = 0;
     out->f = hl_xcalloc((size_t)(n > 0 ? n : 1), sizeof *out->f);
     for (int i = 0; i < n && st == HL_OK; i++) {
         st = do_row(&out->f[i], &w, &rows[i], err);
         out->n = i + 1;
     }
-    work_clear(&w);
+    paper_work_clear(&w);
     if (st != HL_OK)
         hl_paper_formulas_clear(out);
     return (hl_status)st;
