@@ -194,11 +194,6 @@ hl_status hl_errors_time_closed_series(hl_alg *tau, hl_alg *r, int *ok, hl_alg *
 
 /* ---- the whole analysis: one call (hamlie errors, reproduce) ------------ */
 
-/* Vectors of m series (each O(D^n) at first); hl_series_vec_free(NULL, ...)
- * is a no-op.  NOTE: series helpers, kept here while issue 14 keeps the
- * series layer's header to its owner; they belong in series.h. */
-hl_series *hl_series_vec_new(int m, int n, const hl_alg_ctx *ctx);
-void hl_series_vec_free(hl_series *s, int m, const hl_alg_ctx *ctx);
 
 #define HL_ANALYSIS_MAX_ORDER 40
 #define HL_ANALYSIS_MODIFIED_MAX 5 /* the modified field to f_5 (D^4) at most */

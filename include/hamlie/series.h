@@ -46,6 +46,10 @@ typedef struct hl_series {
 
 void hl_series_init(hl_series *s, int n, const hl_alg_ctx *ctx); /* s = O(D^n) */
 void hl_series_clear(hl_series *s, const hl_alg_ctx *ctx);
+/* Vectors of m series (each O(D^n) at first); hl_series_vec_free(NULL, ...)
+ * is a no-op. */
+hl_series *hl_series_vec_new(int m, int n, const hl_alg_ctx *ctx);
+void hl_series_vec_free(hl_series *s, int m, const hl_alg_ctx *ctx);
 void hl_series_set(hl_series *r, const hl_series *a, const hl_alg_ctx *ctx);
 void hl_series_swap(hl_series *a, hl_series *b);
 /* Change n: truncate, or pad with zero coefficients. */

@@ -10,23 +10,6 @@
 #include "hamlie/analysis.h"
 #include "hamlie/scheme.h"
 
-hl_series *hl_series_vec_new(int m, int n, const hl_alg_ctx *ctx)
-{
-    hl_series *s = hl_xmalloc((size_t)m * sizeof *s);
-    for (int i = 0; i < m; i++)
-        hl_series_init(&s[i], n, ctx);
-    return s;
-}
-
-void hl_series_vec_free(hl_series *s, int m, const hl_alg_ctx *ctx)
-{
-    if (s == NULL)
-        return;
-    for (int i = 0; i < m; i++)
-        hl_series_clear(&s[i], ctx);
-    free(s);
-}
-
 void hl_analysis_opts_default(hl_analysis_opts *o)
 {
     o->order = 4;

@@ -13,12 +13,11 @@ enum { CLI_OK = 0, CLI_FAILS = 1, CLI_ERROR = 2, CLI_INTERRUPTED = 130 /* 128 + 
 
 typedef struct cli_command {
     const char *name;
-    int (*fn)(int argc, char **argv);
+    int (*fn)(int argc, char **argv, const struct cli_command *self);
     const char *summary; /* one line for `hamlie --help` */
     const char *help;    /* the full text for `hamlie help NAME` */
 } cli_command;
 
-const cli_command *cli_find(const char *name);
 
 /* Which options a command accepts beyond the common ones
  * (--pairs, --param, --json, --latex, --help). */
@@ -103,7 +102,7 @@ typedef struct cli_spec {
     int (*check)(const cli_opts *o, const cli_command *cmd, const char **extra);
     int (*body)(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_error *err);
 } cli_spec;
-int cli_main(int argc, char **argv, const cli_spec *spec);
+int cli_main(int argc, char **argv, const cli_spec *spec, const cli_command *cmd);
 
 /* The start of a command with options of its own (run, errors): argv is
  * copied into *av (free it after), the own options are taken out
@@ -188,16 +187,16 @@ int cli_progress_fn(double done, double total, void *arg);
 void cli_progress_end(cli_progress *p);
 int cli_interrupted(void);
 
-int cmd_generator(int argc, char **argv);
-int cmd_bracket(int argc, char **argv);
-int cmd_check(int argc, char **argv);
-int cmd_canonical(int argc, char **argv);
-int cmd_lie(int argc, char **argv);
-int cmd_run(int argc, char **argv); extern const char cmd_run_help[];
-int cmd_schemes(int argc, char **argv); extern const char cmd_schemes_help[];
-int cmd_plot(int argc, char **argv); extern const char cmd_plot_help[];
-int cmd_errors(int argc, char **argv); extern const char cmd_errors_help[];
-int cmd_reproduce(int argc, char **argv); extern const char cmd_reproduce_help[];
-int cmd_exact(int argc, char **argv); extern const char cmd_exact_help[];
+int cmd_generator(int argc, char **argv, const cli_command *self);
+int cmd_bracket(int argc, char **argv, const cli_command *self);
+int cmd_check(int argc, char **argv, const cli_command *self);
+int cmd_canonical(int argc, char **argv, const cli_command *self);
+int cmd_lie(int argc, char **argv, const cli_command *self);
+int cmd_run(int argc, char **argv, const cli_command *self); extern const char cmd_run_help[];
+int cmd_schemes(int argc, char **argv, const cli_command *self); extern const char cmd_schemes_help[];
+int cmd_plot(int argc, char **argv, const cli_command *self); extern const char cmd_plot_help[];
+int cmd_errors(int argc, char **argv, const cli_command *self); extern const char cmd_errors_help[];
+int cmd_reproduce(int argc, char **argv, const cli_command *self); extern const char cmd_reproduce_help[];
+int cmd_exact(int argc, char **argv, const cli_command *self); extern const char cmd_exact_help[];
 
 #endif

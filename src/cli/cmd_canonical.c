@@ -152,8 +152,8 @@ static int run(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_err
     return st;
 }
 
-int cmd_canonical(int argc, char **argv)
+int cmd_canonical(int argc, char **argv, const cli_command *self)
 {
     static const cli_spec spec = {"canonical", CLI_OPT_H | CLI_OPT_MAP, check, run};
-    return cli_main(argc, argv, &spec);
+    return cli_main(argc, argv, &spec, self);
 }

@@ -212,8 +212,8 @@ static int run(hl_buf *out, int *code, hl_system *sys, const cli_opts *o, hl_err
     return st;
 }
 
-int cmd_check(int argc, char **argv)
+int cmd_check(int argc, char **argv, const cli_command *self)
 {
     static const cli_spec spec = {"check", CLI_OPT_H | CLI_OPT_INTEGRAL, check, run};
-    return cli_main(argc, argv, &spec);
+    return cli_main(argc, argv, &spec, self);
 }

@@ -111,32 +111,6 @@ static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
     return -1;
 }
 
-/* Everything computed, kept for the writers. */
-const char *errors_source(const err_opts *r, const cli_opts *o)
-{
-    return r->scheme ? "catalog" : o->map ? "map" : "equations";
-}
-
-const char *errors_input(const err_opts *r, const cli_opts *o)
-{
-    return r->scheme ? r->scheme : o->map ? o->map : r->equations;
-}
-
-hl_status errors_make_scheme(hl_scheme **s, const err_opts *r, const cli_opts *o, hl_system *sys,
-                             hl_error *err)
-{
-    int st;
-    if (o->map != NULL) {
-        if ((st = hl_scheme_from_map(s, o->map, sys, err)) != HL_OK)
-            hl_error_prefix(err, "in --map");
-    } else if (r->equations != NULL) {
-        if ((st = hl_scheme_from_equations(s, r->equations, sys, err)) != HL_OK)
-            hl_error_prefix(err, "in --equations");
-    } else
-        st = hl_scheme_new(s, r->scheme, 0, sys, err);
-    return st;
-}
-
 /* The symbolic analysis (hl_analysis_compute), formatted: -1 with the
  * output in out, else the exit code. */
 static int run_symbolic(hl_buf *out, hl_system *sys, const err_opts *r, const cli_opts *o)
@@ -163,9 +137,9 @@ static int run_symbolic(hl_buf *out, hl_system *sys, const err_opts *r, const cl
     return rc;
 }
 
-int cmd_errors(int argc, char **argv)
+int cmd_errors(int argc, char **argv, const cli_command *self)
 {
-    const cli_command *cmd = cli_find("errors");
+    const cli_command *cmd = self;
     err_opts r;
     cli_opts o;
     hl_system *sys = NULL;

@@ -13,7 +13,6 @@
 #include "hamlie/scheme.h"
 #include "hamlie/tape.h"
 
-exact_mode_state exact_mode;
 
 const char cmd_exact_help[] =
     "usage: hamlie exact -H FORMULA [--order N] [options]\n"
@@ -278,7 +277,7 @@ static void found_opt(void *arg, int k, const char *value)
         exact_mode.digits = value;
 }
 
-int cmd_exact(int argc, char **argv)
+int cmd_exact(int argc, char **argv, const cli_command *self)
 {
     static const cli_spec spec = {"exact", CLI_OPT_H | CLI_OPT_ORDER, check, run};
     static const cli_own own[] = {
@@ -287,9 +286,9 @@ int cmd_exact(int argc, char **argv)
     char **av = hl_xmalloc((size_t)(argc + 1) * sizeof *av);
     memcpy(av, argv, (size_t)(argc + 1) * sizeof *av);
     int ac = argc;
-    int rc = cli_take_own(&ac, av, own, 5, found_opt, NULL, cli_find("exact"));
+    int rc = cli_take_own(&ac, av, own, 5, found_opt, NULL, self);
     if (rc < 0)
-        rc = cli_main(ac, av, &spec);
+        rc = cli_main(ac, av, &spec, self);
     free(av);
     return rc;
 }

@@ -7,6 +7,10 @@
 
 #include "cli/cmd_exact_impl.h"
 
+/* The mode of the current `exact` command (cmd_exact_impl.h): set by its
+ * options, read by the writers of every mode. */
+exact_mode_state exact_mode;
+
 static void push_level(char kind)
 {
     if (kind == '[')

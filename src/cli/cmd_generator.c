@@ -52,8 +52,8 @@ static int check(const cli_opts *o, const cli_command *cmd, const char **extra)
     return -1;
 }
 
-int cmd_generator(int argc, char **argv)
+int cmd_generator(int argc, char **argv, const cli_command *self)
 {
     static const cli_spec spec = {"generator", CLI_OPT_H, check, run};
-    return cli_main(argc, argv, &spec);
+    return cli_main(argc, argv, &spec, self);
 }

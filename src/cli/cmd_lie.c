@@ -169,10 +169,10 @@ static int check(const cli_opts *o, const cli_command *cmd, const char **extra)
     return -1;
 }
 
-int cmd_lie(int argc, char **argv)
+int cmd_lie(int argc, char **argv, const cli_command *self)
 {
     static const cli_spec spec = {"lie", CLI_OPT_H | CLI_OPT_ORDER | CLI_OPT_OF | CLI_OPT_TERMS |
                                              CLI_OPT_PROGRESS,
                                   check, run};
-    return cli_main(argc, argv, &spec);
+    return cli_main(argc, argv, &spec, self);
 }

@@ -118,9 +118,9 @@ static void write_output(hl_buf *out, cli_format f, const plot_opts *p, const ch
         hl_buf_printf(out, "  %s.{%s}\n", names[i], formats);
 }
 
-int cmd_plot(int argc, char **argv)
+int cmd_plot(int argc, char **argv, const cli_command *self)
 {
-    const cli_command *cmd = cli_find("plot");
+    const cli_command *cmd = self;
     static const cli_own own[] = {{"--out", 0}, {"--format", 0}, {"--phase", 0}, {"--size", 0}};
     plot_opts p = {NULL, NULL, NULL, NULL};
     cli_opts o;

@@ -141,9 +141,9 @@ static int put_file(hl_buf *b, const char *dir, const char *name)
     return 1;
 }
 
-int cmd_reproduce(int argc, char **argv)
+int cmd_reproduce(int argc, char **argv, const cli_command *self)
 {
-    const cli_command *cmd = cli_find("reproduce");
+    const cli_command *cmd = self;
     static const cli_own own[] = {{"--out", 0}, {"--format", 0}};
     repro_opts p = {NULL, NULL};
     cli_opts o;

@@ -659,9 +659,9 @@ static int build(hl_run **run, hl_scheme **sch, hl_exact_flow **ex, hl_system *s
     return st;
 }
 
-int cmd_run(int argc, char **argv)
+int cmd_run(int argc, char **argv, const cli_command *self)
 {
-    const cli_command *cmd = cli_find("run");
+    const cli_command *cmd = self;
     run_opts r;
     cli_opts o;
     memset(&r, 0, sizeof r);

@@ -120,9 +120,9 @@ static void write_table(hl_buf *out, int latex)
         hl_buf_puts(out, "yes*: implicit for a general H, explicit when H = T(p) + V(q)\n");
 }
 
-int cmd_schemes(int argc, char **argv)
+int cmd_schemes(int argc, char **argv, const cli_command *self)
 {
-    const cli_command *cmd = cli_find("schemes");
+    const cli_command *cmd = self;
     cli_opts o;
     int rc = cli_parse(&o, argc, argv, 0, cmd);
     if (rc < 0 && o.nargs > 0)

@@ -212,9 +212,8 @@ int cli_take_own(int *argc, char **argv, const cli_own *own, int n,
     return -1;
 }
 
-int cli_main(int argc, char **argv, const cli_spec *spec)
+int cli_main(int argc, char **argv, const cli_spec *spec, const cli_command *cmd)
 {
-    const cli_command *cmd = cli_find(spec->name);
     const char *extra[3] = {NULL, NULL, NULL};
     hl_system *sys = NULL;
     cli_opts o;

@@ -102,7 +102,7 @@ static const cli_command commands[] = {
 
 #define NCOMMANDS ((int)(sizeof commands / sizeof commands[0]))
 
-const cli_command *cli_find(const char *name)
+static const cli_command *cli_find(const char *name)
 {
     for (int i = 0; i < NCOMMANDS; i++)
         if (strcmp(commands[i].name, name) == 0)
@@ -166,5 +166,5 @@ int main(int argc, char **argv)
         fprintf(stderr, "hamlie: error: unknown command '%s' (see hamlie --help)\n", name);
         return CLI_ERROR;
     }
-    return c->fn(argc - 1, argv + 1);
+    return c->fn(argc - 1, argv + 1, c);
 }
