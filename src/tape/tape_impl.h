@@ -83,22 +83,7 @@ void hl_tape_run_d(const hl_instr *code, int n, double *r);
 void hl_tape_run_arb(const hl_instr *code, int n, arb_ptr r, slong prec);
 void hl_tape_consts_arb(arb_ptr r, slong prec, const hl_tape *tape);
 
-/* native.c: by register, the index of the body instruction that writes it
- * (-1 for inputs and constants); malloc'd. */
-int *hl_tape_defs_(const hl_tape *t);
-
-/* native.c: for MUL d = a b where one operand is SQRT of the other, w (the
- * other); else -1.  The compiled recursions then take d = w^(3/2), whose
- * coefficient k reads w's coefficient k through one product and one sum
- * (d[k] = sum_{m<k} (5m/2 - k) w[m] d[k-m] / (k w[0]) + (3/2)(d[0]/w[0]) w[k]),
- * where sqrt then product go through two: Kepler's r^3 = r^2 sqrt(r^2). */
-int hl_tape_sqrt_times_(const hl_tape *t, const int *def, const hl_instr *in);
-
-/* native.c: 1/n = *hi + *lo to about twice double precision (the native
- * recursions divide by k+1 as f hi + f lo). */
-void hl_tape_recip_split(double *hi, double *lo, int n);
-
-/* jit.c: the Taylor-ODE recursion of native.c compiled by libgccjit
+/* jit_taylor.c: the Taylor-ODE recursion of emit_c.c compiled by libgccjit
  * (HL_EUNSUP without it); the result is released by hl_tape_jit_release. */
 int hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tape *t, int order,
                        hl_error *err);
