@@ -6,14 +6,6 @@
 #include <arb.h>
 #include "hamlie/tape.h"
 
-/* A body instruction resolved against the Taylor register file: the
- * pointers are computed once per layout, not once per coefficient. */
-typedef struct hl_tinstr {
-    int op;
-    double *d, *x;
-    const double *a, *b;
-} hl_tinstr;
-
 typedef struct hl_instr {
     int op;   /* hl_op */
     int d;    /* destination */
@@ -45,7 +37,8 @@ struct hl_tape {
     slong ra_prec;          /* 0 = constants not computed yet */
 
     double *td;             /* Taylor double: nregs * ts coefficients */
-    struct hl_tinstr *tcode; /* the body with operand pointers into td */
+    struct hl_prog *tprog;  /* the rules recorded for this layout (prog_impl.h) */
+    struct hl_prog *pprog;  /* the point rules recorded over rd (eval.c) */
     void *native_so;        /* hl_tape_native: the loaded object, its entry, */
     void (*native_fn)(double *R); /* and the order it was made for */
     int native_order;
@@ -54,7 +47,7 @@ struct hl_tape {
     long (*jit_iter)(double *z, long n); /* hl_tape_iterate's loop, if nout <= nin */
     long (*jit_watch)(double *z, long n, double w0, double *dev); /* hl_tape_iterate_watch's */
     void *native_jit;       /* hl_tape_native through libgccjit: the gcc_jit_result */
-    double *tinv;           /* tinv[k] = 1/k for k = 1..order+1 (divisions are slow) */
+    double *tsplit;         /* the ODE step's 1/(k+1) = hi + lo: tsplit[2k], tsplit[2k+1] */
     int ts;                 /* its stride (order + 1), 0 = not laid out */
     size_t tdcap;
 
@@ -79,7 +72,6 @@ struct hl_newton {
 };
 
 /* eval.c */
-void hl_tape_run_d(const hl_instr *code, int n, double *r);
 void hl_tape_run_arb(const hl_instr *code, int n, arb_ptr r, slong prec);
 void hl_tape_consts_arb(arb_ptr r, slong prec, const hl_tape *tape);
 

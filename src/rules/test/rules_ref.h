@@ -181,7 +181,8 @@ static const hl_em_ops ref_ops = {ref_num,  ref_coef, ref_store, ref_add, ref_su
 
 /* Coefficients 0..order of d = op(a, b) (x: the auxiliary series; b: for a
  * K op, the constant in b[0]; unused arrays may be NULL). */
-static void ref_taylor(hl_op op, double *d, double *x, const double *a, const double *b, int order)
+static inline void ref_taylor(hl_op op, double *d, double *x, const double *a, const double *b,
+                              int order)
 {
     ref_em g = {{&ref_ops}, {d, (double *)a, (double *)b, x}, {0, 0}};
     const hl_rule *r = hl_rule_of(op);
@@ -190,7 +191,7 @@ static void ref_taylor(hl_op op, double *d, double *x, const double *a, const do
 }
 
 /* d[0] (and x[0]) = op(a[0], b[0]) by the point rule */
-static void ref_point(hl_op op, double *d, double *x, const double *a, const double *b)
+static inline void ref_point(hl_op op, double *d, double *x, const double *a, const double *b)
 {
     ref_em g = {{&ref_ops}, {d, (double *)a, (double *)b, x}, {0, 0}};
     hl_rule_of(op)->point(&g.em);
