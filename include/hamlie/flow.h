@@ -66,8 +66,8 @@ long hl_flow_nsteps(const hl_flow *flow); /* steps taken since creation */
  * t_end (the time left over the mean step so far) exceed
  * HL_FLOW_NATIVE_STEPS, compile the tape's recursion to machine code
  * (hl_tape_native) and go on with it.  The decision counts steps, not
- * clocks, so a run is reproducible; the results change in the last bits at
- * the switch (the compiled sums are added in another order).  Compiling
+ * clocks, so a run is reproducible, and the compiled recursion gives the
+ * interpreter's bits, so the switch does not change the results.  Compiling
  * costs 40-300 ms for the tapes of bench/taylor_flow.c and pays from about
  * 0.3-0.7 million steps; a failure to compile leaves the interpreter. */
 #define HL_FLOW_NATIVE_PROBE 1000
