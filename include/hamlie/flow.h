@@ -67,8 +67,8 @@ long hl_flow_nsteps(const hl_flow *flow); /* steps taken since creation */
  * compilation to pay (tape.h: hl_tape_compile_pays, HL_COMPILE_TAYLOR),
  * compile the tape's recursion to machine code (hl_tape_native) and go on
  * with it.  The decision counts steps, not clocks, so a run is
- * reproducible; the results change in the last bits at the switch (the
- * compiled sums are added in another order).  A failure to compile leaves
+ * reproducible, and the compiled recursion gives the interpreter's bits,
+ * so the switch does not change the results.  A failure to compile leaves
  * the interpreter. */
 #define HL_FLOW_NATIVE_PROBE 1000
 void hl_flow_native_for(hl_flow *flow, double t_end);

@@ -146,13 +146,13 @@ hl_status hl_tape_taylor_ode_arb(arb_ptr z, int order, slong prec, hl_tape *tape
  * Compile the Taylor-ODE recursion at this order to machine code: one
  * straight-line function (every sum written out, every register index a
  * constant); hl_tape_taylor_ode_d at this order then runs it instead of the
- * interpreter, with the same results up to the order of additions and
- * divisions done as multiplications by reciprocals (an ulp or two).  Built
+ * interpreter, with the interpreter's results to the last bit (both run the
+ * rules of src/rules: the same operations in the same order, no
+ * contraction into FMA).  Built
  * in process by libgccjit where hamlie has it (no files), else, or when
  * $HL_CC names a compiler, as C source compiled by the system C compiler
  * ($HL_CC, else "cc", with -march=native: made on and for the machine that
- * runs it) into a temporary shared object and loaded.  Both backends build
- * the same sums in the same order.  Costs one compilation (30-300 ms for
+ * runs it) into a temporary shared object and loaded.  Costs one compilation (30-300 ms for
  * the tapes of bench/taylor_flow.c at order 19, growing with tape size
  * times order squared), for a run about twice as fast: it pays for long
  * runs only (hl_tape_compile_pays, HL_COMPILE_TAYLOR).  HL_EUNSUP if neither

@@ -14,7 +14,7 @@
 #include <string.h>
 
 #include "base/buf.h"
-#include "tape/tape_impl.h"
+#include "tape/prog_impl.h"
 
 typedef struct slot {
     uintptr_t key1;
@@ -226,6 +226,25 @@ static int is_one_over(comp *c, int r)
     return i >= 0 && !c->t->leaf[i].is_pi && fmpq_is_one(c->t->leaf[i].q);
 }
 
+/* r = sqrt(w)? */
+static int is_sqrt_of(comp *c, int r, int w)
+{
+    return c->def[r].op == HL_OP_SQRT && c->def[r].a == w;
+}
+
+/* sqrt(w) w as w^(3/2) (Kepler's r^3): one recurrence instead of two, and
+ * written here, in the tape, so that every back end computes the same
+ * (rules/pow.c). */
+static int three_halves(comp *c, int w)
+{
+    fmpq_t q;
+    fmpq_init(q);
+    fmpq_set_si(q, 3, 2);
+    int k = rational_leaf(c, q);
+    fmpq_clear(q);
+    return emit(c, HL_OP_POWK, w, k);
+}
+
 /* Binary op with the K-variants when one side is constant. */
 static int binop(comp *c, hl_expr_kind kind, int a, int b)
 {
@@ -248,6 +267,10 @@ static int binop(comp *c, hl_expr_kind kind, int a, int b)
         if (!k[b] && is_one_over(c, a)) return emit(c, HL_OP_DIV, b, c->def[a].a);
         if (kb) return emit(c, HL_OP_MULK, a, b);
         if (ka) return emit(c, HL_OP_MULK, b, a);
+        if (is_sqrt_of(c, a, b))
+            return three_halves(c, b);
+        if (is_sqrt_of(c, b, a))
+            return three_halves(c, a);
         return emit(c, HL_OP_MUL, a, b);
     default: /* HL_DIV */
         if (kb) return emit(c, HL_OP_DIVK, a, b);
@@ -688,8 +711,9 @@ void hl_tape_free(hl_tape *t)
     hl_tape_native_clear(t);
     hl_tape_jit_clear(t);
     free(t->td);
-    free(t->tcode);
-    free(t->tinv);
+    hl_prog_free(t->tprog);
+    hl_prog_free(t->pprog);
+    free(t->tsplit);
     if (t->ra)
         _arb_vec_clear(t->ra, t->nregs);
     if (t->ta)

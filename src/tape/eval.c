@@ -1,50 +1,14 @@
 /* Point evaluation of a tape, in double and in Arb.
  *
- * The double interpreter is one switch in one loop over a flat instruction
- * array: nothing is allocated, the constants sit in the register file from
- * compile time.  (GCC turns the dense switch into a jump table; the loop is
- * shaped so that it could become computed goto if that ever measures
- * faster.) */
+ * The double interpreter runs the point rules of src/rules/ recorded once
+ * per tape into a flat program over the register file (prog_impl.h):
+ * nothing is allocated per call, the constants sit in the register file
+ * from compile time. */
 #define _GNU_SOURCE /* sincos */
 #include <math.h>
 #include <string.h>
 
-#include "tape/tape_impl.h"
-
-void hl_tape_run_d(const hl_instr *code, int n, double *r)
-{
-    for (const hl_instr *i = code, *end = code + n; i < end; i++) {
-        switch (i->op) {
-        case HL_OP_NEG: r[i->d] = -r[i->a]; break;
-        case HL_OP_ADD:
-        case HL_OP_ADDK: r[i->d] = r[i->a] + r[i->b]; break;
-        case HL_OP_SUB:
-        case HL_OP_SUBK: r[i->d] = r[i->a] - r[i->b]; break;
-        case HL_OP_KSUB: r[i->d] = r[i->b] - r[i->a]; break;
-        case HL_OP_MUL:
-        case HL_OP_MULK: r[i->d] = r[i->a] * r[i->b]; break;
-        case HL_OP_DIV:
-        case HL_OP_DIVK: r[i->d] = r[i->a] / r[i->b]; break;
-        case HL_OP_KDIV: r[i->d] = r[i->b] / r[i->a]; break;
-        case HL_OP_SQR: r[i->d] = r[i->a] * r[i->a]; break;
-        case HL_OP_POWK: r[i->d] = pow(r[i->a], r[i->b]); break;
-        case HL_OP_SQRT: r[i->d] = sqrt(r[i->a]); break;
-        case HL_OP_EXP: r[i->d] = exp(r[i->a]); break;
-        case HL_OP_LOG: r[i->d] = log(r[i->a]); break;
-        case HL_OP_SINCOS: sincos(r[i->a], &r[i->d], &r[i->x]); break;
-        case HL_OP_SINHCOSH:
-            r[i->d] = sinh(r[i->a]);
-            r[i->x] = cosh(r[i->a]);
-            break;
-        case HL_OP_TAN: r[i->d] = tan(r[i->a]); break;
-        case HL_OP_TANH: r[i->d] = tanh(r[i->a]); break;
-        case HL_OP_ATAN: r[i->d] = atan(r[i->a]); break;
-        case HL_OP_ASIN: r[i->d] = asin(r[i->a]); break;
-        case HL_OP_ACOS: r[i->d] = acos(r[i->a]); break;
-        case HL_OP_ATAN2: r[i->d] = atan2(r[i->a], r[i->b]); break;
-        }
-    }
-}
+#include "tape/prog_impl.h"
 
 void hl_tape_run_arb(const hl_instr *code, int n, arb_ptr r, slong prec)
 {
@@ -100,7 +64,9 @@ void hl_tape_eval_d(double *out, const double *in, hl_tape *t)
     double *r = t->rd;
     if (t->nin > 0)
         memcpy(r, in, (size_t)t->nin * sizeof *r);
-    hl_tape_run_d(t->code, t->ncode, r);
+    if (t->pprog == NULL) /* the point rules, recorded once over rd */
+        t->pprog = hl_prog_point(t, r);
+    hl_prog_run(t->pprog, 0);
     for (int j = 0; j < t->nout; j++)
         out[j] = r[t->outreg[j]];
 }

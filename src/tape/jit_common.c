@@ -20,13 +20,13 @@
 
 #ifdef HAMLIE_HAVE_GCCJIT
 
-/* The libm functions the ops call, by op; NULL where the op is arithmetic. */
-/* The libm functions the ops call, by op; NULL where the op is arithmetic. */
-static const char *const libm_name[HL_OP_COUNT] = {
-    [HL_OP_POWK] = "pow",      [HL_OP_EXP] = "exp",       [HL_OP_LOG] = "log",
-    [HL_OP_SINCOS] = "sincos", [HL_OP_SINHCOSH] = "sinh", [HL_OP_TAN] = "tan",
-    [HL_OP_TANH] = "tanh",     [HL_OP_ATAN] = "atan",     [HL_OP_ASIN] = "asin",
-    [HL_OP_ACOS] = "acos",     [HL_OP_ATAN2] = "atan2",
+/* The libm functions the rules call (sqrt: GCC's builtin, set apart). */
+static const char *const libm_name[HL_PFN_COUNT] = {
+    [HL_PFN_SIN] = "sin",   [HL_PFN_COS] = "cos",   [HL_PFN_TAN] = "tan",
+    [HL_PFN_SINH] = "sinh", [HL_PFN_COSH] = "cosh", [HL_PFN_TANH] = "tanh",
+    [HL_PFN_EXP] = "exp",   [HL_PFN_LOG] = "log",   [HL_PFN_ATAN] = "atan",
+    [HL_PFN_ASIN] = "asin", [HL_PFN_ACOS] = "acos", [HL_PFN_ATAN2] = "atan2",
+    [HL_PFN_POW] = "pow",
 };
 
 gcc_jit_function *hl_jit_import1(jit *J, const char *name)
@@ -36,25 +36,33 @@ gcc_jit_function *hl_jit_import1(jit *J, const char *name)
                                         0);
 }
 
-gcc_jit_function *hl_jit_import_lib(jit *J, int op)
+gcc_jit_function *hl_jit_import_lib(jit *J, hl_pfn f)
 {
-    if (J->lib[op] != NULL)
-        return J->lib[op];
-    if (op == HL_OP_POWK || op == HL_OP_ATAN2) { /* pow(x, y), atan2(y, x) */
+    if (f == HL_PFN_SQRT)
+        return J->sqrt;
+    if (J->lib[f] != NULL)
+        return J->lib[f];
+    if (f == HL_PFN_POW || f == HL_PFN_ATAN2) { /* pow(x, y), atan2(y, x) */
         gcc_jit_param *p[2] = {gcc_jit_context_new_param(J->c, NULL, J->dbl, "u"),
                                gcc_jit_context_new_param(J->c, NULL, J->dbl, "v")};
-        J->lib[op] = gcc_jit_context_new_function(J->c, NULL, GCC_JIT_FUNCTION_IMPORTED, J->dbl,
-                                                  libm_name[op], 2, p, 0);
-    } else if (op == HL_OP_SINCOS) {
+        J->lib[f] = gcc_jit_context_new_function(J->c, NULL, GCC_JIT_FUNCTION_IMPORTED, J->dbl,
+                                                 libm_name[f], 2, p, 0);
+    } else
+        J->lib[f] = hl_jit_import1(J, libm_name[f]);
+    return J->lib[f];
+}
+
+gcc_jit_function *hl_jit_import_sincos(jit *J)
+{
+    if (J->sincos == NULL) {
         gcc_jit_param *p[3] = {gcc_jit_context_new_param(J->c, NULL, J->dbl, "x"),
                                gcc_jit_context_new_param(J->c, NULL, J->dblp, "s"),
                                gcc_jit_context_new_param(J->c, NULL, J->dblp, "c")};
-        J->lib[op] = gcc_jit_context_new_function(J->c, NULL, GCC_JIT_FUNCTION_IMPORTED,
-                                                  gcc_jit_context_get_type(J->c, GCC_JIT_TYPE_VOID),
-                                                  "sincos", 3, p, 0);
-    } else
-        J->lib[op] = hl_jit_import1(J, libm_name[op]);
-    return J->lib[op];
+        J->sincos = gcc_jit_context_new_function(J->c, NULL, GCC_JIT_FUNCTION_IMPORTED,
+                                                 gcc_jit_context_get_type(J->c, GCC_JIT_TYPE_VOID),
+                                                 "sincos", 3, p, 0);
+    }
+    return J->sincos;
 }
 
 /* NOTE: libgccjit runs GCC's driver in process, and the driver installs its

@@ -21,6 +21,7 @@
 #include <string.h>
 
 #include "base/buf.h"
+#include "rules/unroll.h"
 #include "tape/jit_impl.h"
 #include "tape/tape_impl.h"
 
@@ -48,106 +49,145 @@ gcc_jit_rvalue *hl_jit_val(jit *J, int r)
     return gcc_jit_lvalue_as_rvalue(J->loc[r]);
 }
 
-static gcc_jit_rvalue *binop(jit *J, enum gcc_jit_binary_op op, int a, int b)
-{
-    return gcc_jit_context_new_binary_op(J->c, NULL, op, J->dbl, hl_jit_val(J, a),
-                                         hl_jit_val(J, b));
-}
-
-static gcc_jit_rvalue *call1(jit *J, gcc_jit_function *f, int a)
-{
-    gcc_jit_rvalue *x = hl_jit_val(J, a);
-    return gcc_jit_context_new_call(J->c, NULL, f, 1, &x);
-}
-
 void hl_jit_assign(jit *J, int d, gcc_jit_rvalue *v)
 {
     gcc_jit_block_add_assignment(J->blk, NULL, J->loc[d], v);
 }
 
+/* ---- point evaluation: the rules' point() at coefficient 0 ------------------
+ * An emitter whose values are gccjit trees (hl_ev.p) over the registers'
+ * locals.  A register that nothing reads is not assigned, so that its call
+ * is not made (the compiler makes every sin a SINCOS, for Taylor mode). */
+typedef struct pem {
+    hl_em em;
+    jit *J;
+    const hl_instr *in;
+    int fused; /* SINCOS through one sincos call, into D's and X's locals */
+} pem;
+
+static jit *PJ(hl_em *em)
+{
+    return ((pem *)em)->J;
+}
+static hl_ev ptr(gcc_jit_rvalue *r)
+{
+    return (hl_ev){.p = r};
+}
+static gcc_jit_rvalue *RP(hl_ev v)
+{
+    return v.p;
+}
+
+static int slot_reg(const hl_instr *in, hl_slot s)
+{
+    return s == HL_SLOT_D ? in->d : s == HL_SLOT_A ? in->a : s == HL_SLOT_B ? in->b : in->x;
+}
+
+static hl_ev p_num(hl_em *em, long p, long q)
+{
+    return ptr(
+        gcc_jit_context_new_rvalue_from_double(PJ(em)->c, PJ(em)->dbl, (double)p / (double)q));
+}
+
+static hl_ev p_coef(hl_em *em, hl_slot s, int j)
+{
+    (void)j; /* point rules read coefficient 0 only */
+    return ptr(hl_jit_val(PJ(em), slot_reg(((pem *)em)->in, s)));
+}
+
+static void p_store(hl_em *em, hl_slot s, int j, hl_ev v)
+{
+    pem *P = (pem *)em;
+    int r = slot_reg(P->in, s);
+    (void)j;
+    if (P->J->read[r] && !(P->fused && (s == HL_SLOT_D || s == HL_SLOT_X)))
+        hl_jit_assign(P->J, r, RP(v));
+}
+
+static hl_ev p_bin(hl_em *em, enum gcc_jit_binary_op op, hl_ev a, hl_ev b)
+{
+    return ptr(gcc_jit_context_new_binary_op(PJ(em)->c, NULL, op, PJ(em)->dbl, RP(a), RP(b)));
+}
+static hl_ev p_add(hl_em *em, hl_ev a, hl_ev b)
+{
+    return p_bin(em, GCC_JIT_BINARY_OP_PLUS, a, b);
+}
+static hl_ev p_sub(hl_em *em, hl_ev a, hl_ev b)
+{
+    return p_bin(em, GCC_JIT_BINARY_OP_MINUS, a, b);
+}
+static hl_ev p_mul(hl_em *em, hl_ev a, hl_ev b)
+{
+    return p_bin(em, GCC_JIT_BINARY_OP_MULT, a, b);
+}
+static hl_ev p_div(hl_em *em, hl_ev a, hl_ev b)
+{
+    return p_bin(em, GCC_JIT_BINARY_OP_DIVIDE, a, b);
+}
+
+static hl_ev p_neg(hl_em *em, hl_ev a)
+{
+    return ptr(
+        gcc_jit_context_new_unary_op(PJ(em)->c, NULL, GCC_JIT_UNARY_OP_MINUS, PJ(em)->dbl, RP(a)));
+}
+
+static hl_ev p_fma(hl_em *em, hl_ev a, hl_ev b, hl_ev c)
+{
+    gcc_jit_function *f = gcc_jit_context_get_builtin_function(PJ(em)->c, "__builtin_fma");
+    gcc_jit_rvalue *args[3] = {RP(a), RP(b), RP(c)};
+    return ptr(gcc_jit_context_new_call(PJ(em)->c, NULL, f, 3, args));
+}
+
+/* sin and cos of a SINCOS whose two values are read, outside build_loop:
+ * one sincos call (glibc's sincos computes each as sin and cos do, so the
+ * bits are the same) */
+static int fuse_sincos(const pem *P)
+{
+    const jit *J = P->J;
+    return P->in->op == HL_OP_SINCOS && J->read[P->in->d] && J->read[P->in->x] && !J->split_sincos;
+}
+
+static hl_ev p_call(hl_em *em, hl_pfn f, hl_ev a, hl_ev b)
+{
+    pem *P = (pem *)em;
+    jit *J = P->J;
+    if ((f == HL_PFN_SIN || f == HL_PFN_COS) && fuse_sincos(P)) {
+        if (!P->fused) {
+            gcc_jit_rvalue *args[3] = {RP(a), gcc_jit_lvalue_get_address(J->loc[P->in->d], NULL),
+                                       gcc_jit_lvalue_get_address(J->loc[P->in->x], NULL)};
+            gcc_jit_block_add_eval(
+                J->blk, NULL,
+                gcc_jit_context_new_call(J->c, NULL, hl_jit_import_sincos(J), 3, args));
+            P->fused = 1;
+        }
+        return ptr(hl_jit_val(J, f == HL_PFN_SIN ? P->in->d : P->in->x));
+    }
+    gcc_jit_rvalue *args[2] = {RP(a), RP(b)};
+    int nargs = f == HL_PFN_POW || f == HL_PFN_ATAN2 ? 2 : 1;
+    return ptr(gcc_jit_context_new_call(J->c, NULL, hl_jit_import_lib(J, f), nargs, args));
+}
+
+/* point rules keep nothing (keep and kept serve the recurrences) */
+static void p_keep(hl_em *em, int slot, hl_ev v)
+{
+    (void)em, (void)slot, (void)v;
+}
+static hl_ev p_kept(hl_em *em, int slot)
+{
+    (void)slot;
+    return ptr(gcc_jit_context_zero(PJ(em)->c, PJ(em)->dbl));
+}
+
+static const hl_em_ops point_ops = {
+    p_num, p_coef, p_store,          p_add,  p_sub, p_mul, p_neg, p_div,
+    p_fma, p_call, hl_conv_unrolled, p_keep, p_kept};
+
+/* One instruction, as the interpreter (eval.c) computes it: its rule's
+ * point value. */
 void hl_jit_emit(jit *J, const hl_instr *i)
 {
-    gcc_jit_rvalue *v = NULL;
-    switch ((hl_op)i->op) {
-    case HL_OP_NEG:
-        v = gcc_jit_context_new_unary_op(J->c, NULL, GCC_JIT_UNARY_OP_MINUS, J->dbl,
-                                         hl_jit_val(J, i->a));
-        break;
-    case HL_OP_ADD:
-    case HL_OP_ADDK:
-        v = binop(J, GCC_JIT_BINARY_OP_PLUS, i->a, i->b);
-        break;
-    case HL_OP_SUB:
-    case HL_OP_SUBK:
-        v = binop(J, GCC_JIT_BINARY_OP_MINUS, i->a, i->b);
-        break;
-    case HL_OP_KSUB:
-        v = binop(J, GCC_JIT_BINARY_OP_MINUS, i->b, i->a);
-        break;
-    case HL_OP_MUL:
-    case HL_OP_MULK:
-        v = binop(J, GCC_JIT_BINARY_OP_MULT, i->a, i->b);
-        break;
-    case HL_OP_DIV:
-    case HL_OP_DIVK:
-        v = binop(J, GCC_JIT_BINARY_OP_DIVIDE, i->a, i->b);
-        break;
-    case HL_OP_KDIV:
-        v = binop(J, GCC_JIT_BINARY_OP_DIVIDE, i->b, i->a);
-        break;
-    case HL_OP_SQR:
-        v = binop(J, GCC_JIT_BINARY_OP_MULT, i->a, i->a);
-        break;
-    case HL_OP_POWK:
-    case HL_OP_ATAN2: {
-        gcc_jit_rvalue *args[2] = {hl_jit_val(J, i->a), hl_jit_val(J, i->b)};
-        v = gcc_jit_context_new_call(J->c, NULL, hl_jit_import_lib(J, i->op), 2, args);
-        break;
-    }
-    case HL_OP_SQRT:
-        v = call1(J, J->sqrt, i->a);
-        break;
-    case HL_OP_SINCOS: {
-        /* sin or cos alone when the other is not read (the compiler makes
-         * every sin a SINCOS, for Taylor mode): glibc's sincos computes
-         * each as sin and cos do, so the bits are the same */
-        if (!J->read[i->x] || !J->read[i->d] || J->split_sincos) {
-            if (J->sin == NULL)
-                J->sin = hl_jit_import1(J, "sin"), J->cos = hl_jit_import1(J, "cos");
-            if (J->read[i->d])
-                hl_jit_assign(J, i->d, call1(J, J->sin, i->a));
-            if (J->read[i->x])
-                hl_jit_assign(J, i->x, call1(J, J->cos, i->a));
-            return;
-        }
-        gcc_jit_rvalue *args[3] = {hl_jit_val(J, i->a),
-                                   gcc_jit_lvalue_get_address(J->loc[i->d], NULL),
-                                   gcc_jit_lvalue_get_address(J->loc[i->x], NULL)};
-        gcc_jit_block_add_eval(
-            J->blk, NULL,
-            gcc_jit_context_new_call(J->c, NULL, hl_jit_import_lib(J, i->op), 3, args));
-        return;
-    }
-    case HL_OP_SINHCOSH:
-        hl_jit_assign(J, i->d, call1(J, hl_jit_import_lib(J, i->op), i->a));
-        if (J->cosh == NULL)
-            J->cosh = hl_jit_import1(J, "cosh");
-        v = call1(J, J->cosh, i->a);
-        hl_jit_assign(J, i->x, v);
-        return;
-    case HL_OP_EXP:
-    case HL_OP_LOG:
-    case HL_OP_TAN:
-    case HL_OP_TANH:
-    case HL_OP_ATAN:
-    case HL_OP_ASIN:
-    case HL_OP_ACOS:
-        v = call1(J, hl_jit_import_lib(J, i->op), i->a);
-        break;
-    case HL_OP_COUNT:
-        return;
-    }
-    hl_jit_assign(J, i->d, v);
+    pem P = {.em = {&point_ops}, .J = J, .in = i};
+    hl_rule_of(i->op)->point(&P.em);
 }
 
 void hl_jit_new_locals(jit *J, const char *prefix)

@@ -8,6 +8,7 @@
 #ifdef HAMLIE_HAVE_GCCJIT
 #include <libgccjit.h>
 
+#include "rules/rule.h"
 #include "tape/tape_impl.h"
 
 /* One tape being built into a function: its registers as locals. */
@@ -17,8 +18,8 @@ typedef struct jit {
     gcc_jit_block *blk;
     gcc_jit_function *fun;
     gcc_jit_lvalue **loc; /* one local per non-constant register */
-    gcc_jit_function *lib[HL_OP_COUNT];
-    gcc_jit_function *cosh, *sqrt, *sin, *cos;
+    gcc_jit_function *lib[HL_PFN_COUNT]; /* libm imports, by point function */
+    gcc_jit_function *sqrt, *sincos;
     const hl_tape *t;
     unsigned char *read; /* by register: read by an instruction or an output */
     int split_sincos;    /* sin and cos as two calls (build_loop) */
@@ -42,10 +43,12 @@ void hl_jit_init(jit *J, gcc_jit_context *c, const hl_tape *t);
 hl_status hl_jit_compile(gcc_jit_result **res, void **code, gcc_jit_context *c, const char *entry,
                          const char *what, hl_error *err);
 
-/* The libm function name (one double argument), and the one an op calls
- * (pow, atan2: two; sincos: x and two pointers), imported once per J. */
+/* The libm function name (one double argument), the one a rule's point
+ * function calls (pow, atan2: two arguments; sqrt: GCC's builtin), and
+ * sincos(x, &s, &c), imported once per J. */
 gcc_jit_function *hl_jit_import1(jit *J, const char *name);
-gcc_jit_function *hl_jit_import_lib(jit *J, int op);
+gcc_jit_function *hl_jit_import_lib(jit *J, hl_pfn f);
+gcc_jit_function *hl_jit_import_sincos(jit *J);
 
 /* ---- jit_eval.c: a tape's instructions in J->fun ---- */
 

@@ -135,7 +135,7 @@ static gcc_jit_rvalue **inline_tape(nj *N, int k, gcc_jit_block *blk, int with_u
     for (int q = 0; q < N->ntapes && q < 4; q++)
         if (q != k) {
             memcpy(N->T[q].lib, J->lib, sizeof J->lib);
-            N->T[q].cosh = J->cosh, N->T[q].sin = J->sin, N->T[q].cos = J->cos;
+            N->T[q].sincos = J->sincos;
         }
     return out;
 }

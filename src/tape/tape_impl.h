@@ -6,14 +6,6 @@
 #include <arb.h>
 #include "hamlie/tape.h"
 
-/* A body instruction resolved against the Taylor register file: the
- * pointers are computed once per layout, not once per coefficient. */
-typedef struct hl_tinstr {
-    int op;
-    double *d, *x;
-    const double *a, *b;
-} hl_tinstr;
-
 typedef struct hl_instr {
     int op;   /* hl_op */
     int d;    /* destination */
@@ -45,7 +37,8 @@ struct hl_tape {
     slong ra_prec;          /* 0 = constants not computed yet */
 
     double *td;             /* Taylor double: nregs * ts coefficients */
-    struct hl_tinstr *tcode; /* the body with operand pointers into td */
+    struct hl_prog *tprog;  /* the rules recorded for this layout (prog_impl.h) */
+    struct hl_prog *pprog;  /* the point rules recorded over rd (eval.c) */
     void *native_so;        /* hl_tape_native: the loaded object, its entry, */
     void (*native_fn)(double *R); /* and the order it was made for */
     int native_order;
@@ -54,7 +47,7 @@ struct hl_tape {
     long (*jit_iter)(double *z, long n); /* hl_tape_iterate's loop, if nout <= nin */
     long (*jit_watch)(double *z, long n, double w0, double *dev); /* hl_tape_iterate_watch's */
     void *native_jit;       /* hl_tape_native through libgccjit: the gcc_jit_result */
-    double *tinv;           /* tinv[k] = 1/k for k = 1..order+1 (divisions are slow) */
+    double *tsplit;         /* the ODE step's 1/(k+1) = hi + lo: tsplit[2k], tsplit[2k+1] */
     int ts;                 /* its stride (order + 1), 0 = not laid out */
     size_t tdcap;
 
@@ -79,29 +72,13 @@ struct hl_newton {
 };
 
 /* eval.c */
-void hl_tape_run_d(const hl_instr *code, int n, double *r);
 void hl_tape_run_arb(const hl_instr *code, int n, arb_ptr r, slong prec);
 void hl_tape_consts_arb(arb_ptr r, slong prec, const hl_tape *tape);
 
-/* native.c: by register, the index of the body instruction that writes it
- * (-1 for inputs and constants); malloc'd. */
-int *hl_tape_defs_(const hl_tape *t);
-
-/* native.c: for MUL d = a b where one operand is SQRT of the other, w (the
- * other); else -1.  The compiled recursions then take d = w^(3/2), whose
- * coefficient k reads w's coefficient k through one product and one sum
- * (d[k] = sum_{m<k} (5m/2 - k) w[m] d[k-m] / (k w[0]) + (3/2)(d[0]/w[0]) w[k]),
- * where sqrt then product go through two: Kepler's r^3 = r^2 sqrt(r^2). */
-int hl_tape_sqrt_times_(const hl_tape *t, const int *def, const hl_instr *in);
-
-/* native.c: 1/n = *hi + *lo to about twice double precision (the native
- * recursions divide by k+1 as f hi + f lo). */
-void hl_tape_recip_split(double *hi, double *lo, int n);
-
-/* jit.c: the Taylor-ODE recursion of native.c compiled by libgccjit
+/* jit_taylor.c: the Taylor-ODE recursion of emit_c.c compiled by libgccjit
  * (HL_EUNSUP without it); the result is released by hl_tape_jit_release. */
-int hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tape *t, int order,
-                       hl_error *err);
+hl_status hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tape *t, int order,
+                             hl_error *err);
 void hl_tape_jit_release(void *result);
 
 #endif

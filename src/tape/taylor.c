@@ -13,8 +13,11 @@
 #include <string.h>
 
 #include "base/buf.h"
-#include "tape/tape_impl.h"
+#include "rules/rule.h"
+#include "tape/prog_impl.h"
 
+/* Lay the register file out for this order and record the rules over it
+ * (prog_impl.h): once per order, not once per call. */
 static void layout_d(hl_tape *t, int order)
 {
     int S = order + 1;
@@ -30,201 +33,22 @@ static void layout_d(hl_tape *t, int order)
     for (int i = 0; i < t->nregs; i++)
         if (t->isconst[i])
             t->td[(size_t)i * S] = t->rd[i];
-    if (t->tcode == NULL)
-        t->tcode = hl_xmalloc(((size_t)t->ncode + 1) * sizeof *t->tcode);
-    t->tinv = hl_xrealloc(t->tinv, ((size_t)S + 1) * sizeof *t->tinv);
-    t->tinv[0] = 0;
-    for (int k = 1; k <= S; k++)
-        t->tinv[k] = 1.0 / k;
-    for (int i = 0; i < t->ncode; i++) {
-        const hl_instr *in = &t->code[i];
-        hl_tinstr *ti = &t->tcode[i];
-        ti->op = in->op;
-        ti->d = t->td + (size_t)in->d * S;
-        ti->a = t->td + (size_t)in->a * S;
-        ti->b = in->b >= 0 ? t->td + (size_t)in->b * S : NULL;
-        ti->x = in->x >= 0 ? t->td + (size_t)in->x * S : NULL;
-    }
+    t->tsplit = hl_xrealloc(t->tsplit, 2 * ((size_t)S + 1) * sizeof *t->tsplit);
+    for (int k = 0; k <= S; k++)
+        hl_rule_recip_split(&t->tsplit[2 * k], &t->tsplit[2 * k + 1], k + 1);
+    hl_prog_free(t->tprog);
+    t->tprog = hl_prog_taylor(t, t->td, order);
     t->ts = S;
 }
 
-/* sum_{j=lo..hi} x[j] y[k-j], with four accumulators: one dependency chain
- * of additions would bound the speed.  (Tried: a switch to fully unrolled
- * bodies per length; faster on Kepler, slower on Henon-Heiles, where most
- * sums are short.) */
-static inline double conv(const double *x, const double *y, int lo, int hi, int k)
+/* z[k+1] = f[k] / (k+1) as fma(f, hi, f lo), hi + lo = 1/(k+1), as the
+ * compiled code does (rule.h, hl_rule_recip_split): a division is slow, a
+ * product by a rounded 1/(k+1) alone drifts the phase. */
+static void ode_divide(double *td, const int *outreg, int n, int S, int k, double hi, double lo)
 {
-    double s0 = 0, s1 = 0, s2 = 0, s3 = 0;
-    int j = lo;
-    for (; j + 3 <= hi; j += 4) {
-        s0 += x[j] * y[k - j];
-        s1 += x[j + 1] * y[k - j - 1];
-        s2 += x[j + 2] * y[k - j - 2];
-        s3 += x[j + 3] * y[k - j - 3];
-    }
-    for (; j <= hi; j++)
-        s0 += x[j] * y[k - j];
-    return (s0 + s1) + (s2 + s3);
-}
-
-/* sum_{j=1..k} j x[j] y[k-j] */
-static inline double dconv(const double *x, const double *y, int k)
-{
-    double s0 = 0, s1 = 0, j0 = 1;
-    int j = 1;
-    for (; j < k; j += 2, j0 += 2) {
-        s0 += j0 * x[j] * y[k - j];
-        s1 += (j0 + 1) * x[j + 1] * y[k - j - 1];
-    }
-    if (j == k)
-        s0 += j0 * x[j] * y[k - j];
-    return s0 + s1;
-}
-
-/* Coefficient k of every body register. */
-static void step_d(const hl_tape *t, int k)
-{
-    const double dk = (double)k, ik = t->tinv[k];
-    for (const hl_tinstr *i = t->tcode, *end = t->tcode + t->ncode; i < end; i++) {
-        double *d = i->d, *x = i->x;
-        const double *a = i->a, *b = i->b;
-        double s, c;
-        switch (i->op) {
-        case HL_OP_NEG: d[k] = -a[k]; break;
-        case HL_OP_ADD: d[k] = a[k] + b[k]; break;
-        case HL_OP_SUB: d[k] = a[k] - b[k]; break;
-        case HL_OP_MUL: d[k] = conv(a, b, 0, k, k); break;
-        case HL_OP_DIV:
-            d[k] = (a[k] - conv(b, d, 1, k, k)) / b[0];
-            break;
-        case HL_OP_SQR:
-            s = 2 * conv(a, a, 0, (k + 1) / 2 - 1, k);
-            if (k % 2 == 0)
-                s += a[k / 2] * a[k / 2];
-            d[k] = s;
-            break;
-        case HL_OP_ADDK: d[k] = k ? a[k] : a[0] + b[0]; break;
-        case HL_OP_SUBK: d[k] = k ? a[k] : a[0] - b[0]; break;
-        case HL_OP_KSUB: d[k] = k ? -a[k] : b[0] - a[0]; break;
-        case HL_OP_MULK: d[k] = a[k] * b[0]; break;
-        case HL_OP_DIVK: d[k] = a[k] / b[0]; break;
-        case HL_OP_KDIV:
-            d[k] = k ? -conv(a, d, 1, k, k) / a[0] : b[0] / a[0];
-            break;
-        case HL_OP_POWK:
-            if (k == 0) {
-                d[0] = pow(a[0], b[0]);
-            } else {
-                /* with m = k - j: sum_{m=1..k} ((c+1) m - k) a[m] d[k-m] */
-                double c1 = b[0] + 1, w0 = c1 - dk, w1 = 2 * c1 - dk, s1 = 0;
-                int m = 1;
-                s = 0;
-                for (; m < k; m += 2, w0 += 2 * c1, w1 += 2 * c1) {
-                    s += w0 * a[m] * d[k - m];
-                    s1 += w1 * a[m + 1] * d[k - m - 1];
-                }
-                if (m == k)
-                    s += w0 * a[m] * d[0];
-                d[k] = (s + s1) / (dk * a[0]);
-            }
-            break;
-        case HL_OP_SQRT:
-            d[k] = k ? (a[k] - conv(d, d, 1, k - 1, k)) / (2 * d[0]) : sqrt(a[0]);
-            break;
-        case HL_OP_EXP:
-            if (k == 0) {
-                d[0] = exp(a[0]);
-            } else {
-                d[k] = dconv(a, d, k) * ik;
-            }
-            break;
-        case HL_OP_LOG:
-            if (k == 0) {
-                d[0] = log(a[0]);
-            } else {
-                s = dk * a[k];
-                for (int j = 1; j < k; j++)
-                    s -= (k - j) * a[j] * d[k - j];
-                d[k] = s / (dk * a[0]);
-            }
-            break;
-        case HL_OP_SINCOS:
-        case HL_OP_SINHCOSH:
-            if (k == 0) {
-                if (i->op == HL_OP_SINCOS) {
-                    sincos(a[0], &d[0], &x[0]);
-                } else {
-                    d[0] = sinh(a[0]);
-                    x[0] = cosh(a[0]);
-                }
-            } else {
-                /* two partial sums each, for the pipeline (see conv) */
-                double s1 = 0, c1 = 0, jd = 1;
-                int j = 1;
-                s = c = 0;
-                for (; j < k; j += 2, jd += 2) {
-                    double ja = jd * a[j], jb = (jd + 1) * a[j + 1];
-                    s += ja * x[k - j];
-                    c += ja * d[k - j];
-                    s1 += jb * x[k - j - 1];
-                    c1 += jb * d[k - j - 1];
-                }
-                if (j == k) {
-                    double ja = jd * a[j];
-                    s += ja * x[0];
-                    c += ja * d[0];
-                }
-                s += s1;
-                c += c1;
-                d[k] = s * ik;
-                x[k] = (i->op == HL_OP_SINCOS ? -c : c) * ik;
-            }
-            break;
-        case HL_OP_TAN:
-        case HL_OP_TANH:
-            if (k == 0) {
-                d[0] = i->op == HL_OP_TAN ? tan(a[0]) : tanh(a[0]);
-            } else {
-                s = dconv(a, x, k);
-                d[k] = i->op == HL_OP_TAN ? a[k] + s * ik : a[k] - s * ik;
-            }
-            s = 2 * conv(d, d, 0, (k + 1) / 2 - 1, k);
-            if (k % 2 == 0)
-                s += d[k / 2] * d[k / 2];
-            x[k] = s;
-            break;
-        case HL_OP_ATAN:
-        case HL_OP_ASIN:
-        case HL_OP_ACOS:
-            s = conv(a, a, 0, k, k); /* (a*a)[k] */
-            if (i->op == HL_OP_ATAN) {
-                x[k] = k ? s : 1 + s;
-            } else if (k == 0) {
-                x[0] = sqrt(1 - s);
-            } else {
-                x[k] = (-s - conv(x, x, 1, k - 1, k)) / (2 * x[0]);
-            }
-            if (k == 0) {
-                d[0] = i->op == HL_OP_ATAN ? atan(a[0]) : i->op == HL_OP_ASIN ? asin(a[0]) : acos(a[0]);
-            } else {
-                s = 0;
-                for (int j = 1; j < k; j++)
-                    s += (k - j) * x[j] * d[k - j];
-                d[k] = ((i->op == HL_OP_ACOS ? -dk : dk) * a[k] - s) / (dk * x[0]);
-            }
-            break;
-        case HL_OP_ATAN2:
-            x[k] = conv(a, a, 0, k, k) + conv(b, b, 0, k, k);
-            if (k == 0) {
-                d[0] = atan2(a[0], b[0]);
-            } else {
-                s = dconv(a, b, k) - dconv(b, a, k); /* (b a' - a b')[k-1] */
-                for (int j = 1; j < k; j++)
-                    s -= (k - j) * x[j] * d[k - j];
-                d[k] = s / (dk * x[0]);
-            }
-            break;
-        }
+    for (int i = 0; i < n; i++) {
+        double f = td[(size_t)outreg[i] * S + k];
+        td[(size_t)i * S + k + 1] = lo == 0 ? f * hi : fma(f, hi, f * lo);
     }
 }
 
@@ -235,7 +59,7 @@ void hl_tape_taylor_d(double *out, const double *in, int order, hl_tape *t)
     for (int i = 0; i < t->nin; i++)
         memcpy(t->td + (size_t)i * S, in + (size_t)i * S, (size_t)S * sizeof *t->td);
     for (int k = 0; k <= order; k++)
-        step_d(t, k);
+        hl_prog_run(t->tprog, k);
     for (int j = 0; j < t->nout; j++)
         memcpy(out + (size_t)j * S, t->td + (size_t)t->outreg[j] * S, (size_t)S * sizeof *out);
 }
@@ -259,12 +83,8 @@ hl_status hl_tape_taylor_ode_d(double *z, int order, hl_tape *t, hl_error *err)
         return HL_OK;
     }
     for (int k = 0; k < order; k++) {
-        step_d(t, k);
-        /* a division, not a multiplication by 1/(k+1): the reciprocal's
-         * rounding error has a fixed sign and would drift the phase */
-        const double k1 = k + 1;
-        for (int i = 0; i < n; i++)
-            td[(size_t)i * S + k + 1] = td[(size_t)t->outreg[i] * S + k] / k1;
+        hl_prog_run(t->tprog, k);
+        ode_divide(td, t->outreg, n, S, k, t->tsplit[2 * k], t->tsplit[2 * k + 1]);
     }
     memcpy(z, td, (size_t)n * S * sizeof *z);
     return HL_OK;

@@ -10,6 +10,7 @@
 #include "hl_test.h"
 #include "hamlie/tape.h"
 #include "tape/tape_impl.h"
+#include "rules/rule.h"
 
 static const char *const vars[] = {"x", "y", "z"};
 static hl_pool *P;
@@ -129,7 +130,7 @@ static void suite(void)
 }
 
 /* The compiled recursions divide by k+1 as fma(f, hi, f lo) with
- * hl_tape_recip_split's hi + lo = 1/n: the quotient rounded once, i.e. the
+ * hl_rule_recip_split's hi + lo = 1/n: the quotient rounded once, i.e. the
  * division's bits, for n = 1..1000 and 200 random f each (a miss is
  * possible only within 2^-105 of a rounding boundary: none expected). */
 static void test_recip_split(void)
@@ -137,7 +138,7 @@ static void test_recip_split(void)
     int miss = 0;
     for (int n = 1; n <= 1000; n++) {
         double hi, lo;
-        hl_tape_recip_split(&hi, &lo, n);
+        hl_rule_recip_split(&hi, &lo, n);
         CHECK(hi == 1.0 / n && fabs(lo) <= 0x1p-53 * hi);
         for (int r = 0; r < 200; r++) {
             double f = ldexp((double)(rnd(1u << 30) + 1) / (1u << 30), (int)rnd(200) - 100);

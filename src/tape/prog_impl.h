@@ -1,0 +1,32 @@
+/* The double interpreter's recorded programs (prog.c).
+ *
+ * The rules of src/rules/ say what to compute through an emitter; calling
+ * them (through function pointers, per term) at every step would cost more
+ * than the arithmetic.  So the interpreter runs them ONCE per layout
+ * through a recording emitter, which writes for each coefficient k a flat
+ * list of micro-operations with resolved pointers (into the Taylor register
+ * file, the constants, a few temporaries, and the values each instruction
+ * keeps from k = 0), and then executes that list with one tight switch.  A
+ * convolution is one micro-operation whose loop runs in C in hl_conv_plan's
+ * order, so interpreted and compiled runs agree bit for bit. */
+#ifndef HAMLIE_TAPE_PROG_IMPL_H
+#define HAMLIE_TAPE_PROG_IMPL_H
+
+#include "tape/tape_impl.h"
+
+typedef struct hl_prog hl_prog;
+
+/* The Taylor programs of coefficients 0..order of t's body over the
+ * register file td (stride order + 1, constants already in place). */
+hl_prog *hl_prog_taylor(const hl_tape *t, double *td, int order);
+
+/* The point program of t's body over the register file r (one double per
+ * register). */
+hl_prog *hl_prog_point(const hl_tape *t, double *r);
+
+/* Run the program of coefficient k (0 for a point program). */
+void hl_prog_run(const hl_prog *p, int k);
+
+void hl_prog_free(hl_prog *p); /* NULL is a no-op */
+
+#endif /* HAMLIE_TAPE_PROG_IMPL_H */
