@@ -13,6 +13,7 @@
  * that vanishes) is kept in the emitter; later calls return zero so the
  * rule runs to its end, and series_em_run returns it. */
 #include <stdlib.h>
+#include <string.h>
 
 #include "base/buf.h"
 #include "series/series_impl.h"

@@ -1,26 +1,20 @@
 /* Taylor mode: an expression DAG compiled once into a list of nodes in
  * topological order, then evaluated coefficient by coefficient: step k
  * computes the D^k coefficient of every node from the coefficients below k
- * (Hairer, Norsett, Wanner, Solving ODEs I, §I.8; Jorba & Zou 2005).  With
- * u the argument and f = F(u):
- *   F' = G(f) known  =>  f_k = (1/k) sum_{j=1..k} j u_j g_{k-j}
- *   (exp: g = f; sin/cos: g = cos/-sin, computed together; tan: g = 1 + f^2);
- *   u^e (e rational):  f_k = 1/(k u_0) sum_{j=1..k} ((e+1) j - k) u_j f_{k-j};
- *   log, atan, asin, acos:  f = F(u_0) + integral of u'/R, R = u, 1 + u^2,
- *   sqrt(1 - u^2), by series division;
- *   atan2(y, x):  f = atan2(y_0, x_0) + integral of (x y' - y x')/(x^2 + y^2).
- * Only F(u_0) goes through the algebra layer (hl_alg_apply); the rest is
- * exact arithmetic on the coefficients.
+ * (Hairer, Norsett, Wanner, Solving ODEs I, §I.8; Jorba & Zou 2005).  Each
+ * node is an operation of the tape (hl_op) and its coefficient k comes from
+ * the operation's rule (src/rules), run by the exact back end of emit.c;
+ * only point values F(u_0) go through the algebra layer (hl_alg_apply), the
+ * rest is exact arithmetic on the coefficients.
  *
  * Coefficient-wise evaluation is what makes the order-by-order solver cost
  * O(n^2) products per node instead of O(n^3): a new order of the unknowns
  * only adds a coefficient.  Subtrees without symbols are folded to constants
  * by the algebra layer (exactly: sin(pi/3), sqrt(8)); integer powers become
  * products (so (D + x D^2)^3 needs no nonzero constant term); other powers
- * with constant exponents use the recurrence above, non-constant exponents
+ * with constant exponents are the operation a^c, non-constant exponents
  * exp(b log a).  The compile walk is iterative (explicit stack) so that the
  * long sums hl_alg_to_expr writes cannot exhaust the C stack. */
-#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
