@@ -6,8 +6,8 @@
  *    x(D) = sum_{k<L} x_k D^k, L = n + 1 + SLACK, with coefficients in the
  *    dual numbers a + b eps (eps^2 = 0; step 3).  The scheme's equations
  *    (expression DAGs over q, p, D, the unknowns and integrals I#k) are
- *    evaluated node by node with the usual recurrences (products, quotients,
- *    exp, log, sin/cos, powers, ...), each shared node once.  A quotient by
+ *    evaluated node by node by the operations' rules (dual.c), each shared
+ *    node once.  A quotient by
  *    a series whose first v coefficients are zero (Q - q, D) is taken after
  *    dividing both by D^v (the numerator must vanish there too, as in
  *    (Q - q)/D or (P^2 - p^2)/(P - p)).
@@ -47,27 +47,17 @@
  */
 #include <float.h>
 #include <math.h>
-#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "analysis/numeric_impl.h"
 #include "base/buf.h"
+#include "base/memo.h"
 #include "hamlie/numerr.h"
 #include "hamlie/tape.h"
 
 #define SLACK 3
 #define NUM_MAX_NEST 4 /* integrals inside integrals: not in the language */
-
-typedef struct dn {
-    double r, e;
-} dn;
-
-static dn dmul(dn a, dn b) { return (dn){a.r * b.r, a.r * b.e + a.e * b.r}; }
-static dn dadd(dn a, dn b) { return (dn){a.r + b.r, a.e + b.e}; }
-static dn dsub(dn a, dn b) { return (dn){a.r - b.r, a.e - b.e}; }
-static dn dscal(dn a, double c) { return (dn){a.r * c, a.e * c}; }
-static dn ddiv(dn a, dn b) { return (dn){a.r / b.r, (a.e * b.r - a.r * b.e) / (b.r * b.r)}; }
-static int dzero(dn a) { return a.r == 0 && a.e == 0; }
 
 /* ---- the evaluator ------------------------------------------------------ */
 
@@ -77,9 +67,8 @@ typedef struct ev {
     int nsym;               /* point 2N, D, unknowns m, s# */
     const char **names;
     dn *symval;             /* nsym * L */
-    const hl_expr **key;    /* memo: open addressing */
-    int *slot;
-    size_t cap, used;
+    hl_memo memo;           /* expression -> index into the arena */
+    size_t used;
     dn *arena;              /* used * L */
     size_t arena_cap;
     int depth;
@@ -105,12 +94,10 @@ static void ev_init(ev *E, const hl_scheme *s, int L, hl_error *err)
         E->names[2 * N + 1 + i] = s->unknown[i];
     E->names[2 * N + 1 + m] = HL_SCHEME_S;
     E->symval = calloc((size_t)E->nsym * L, sizeof(dn));
-    E->cap = 1024;
-    E->key = calloc(E->cap, sizeof *E->key);
-    E->slot = calloc(E->cap, sizeof *E->slot);
+    hl_memo_init(&E->memo);
     E->arena_cap = 256;
     E->arena = malloc(E->arena_cap * L * sizeof(dn));
-    if (E->symval == NULL || E->key == NULL || E->slot == NULL || E->arena == NULL)
+    if (E->symval == NULL || E->arena == NULL)
         abort();
     E->symval[(size_t)2 * N * L + 1] = (dn){1, 0}; /* D */
 }
@@ -119,72 +106,35 @@ static void ev_clear(ev *E)
 {
     free(E->names);
     free(E->symval);
-    free(E->key);
-    free(E->slot);
+    hl_memo_clear(&E->memo);
     free(E->arena);
 }
 
 static void ev_reset(ev *E)
 {
-    memset(E->key, 0, E->cap * sizeof *E->key);
+    hl_memo_clear(&E->memo);
+    hl_memo_init(&E->memo);
     E->used = 0;
 }
 
 static dn *sym(ev *E, int i) { return E->symval + (size_t)i * E->L; }
 
-static size_t hsh(const hl_expr *e, size_t cap)
-{
-    return (size_t)(((uintptr_t)e >> 4) * 0x9E3779B97F4A7C15ull) & (cap - 1);
-}
-
 static dn *memo_find(ev *E, const hl_expr *e)
 {
-    for (size_t h = hsh(e, E->cap);; h = (h + 1) & (E->cap - 1)) {
-        if (E->key[h] == NULL)
-            return NULL;
-        if (E->key[h] == e)
-            return E->arena + (size_t)E->slot[h] * E->L;
-    }
-}
-
-static void memo_grow(ev *E)
-{
-    size_t oc = E->cap;
-    const hl_expr **ok = E->key;
-    int *os = E->slot;
-    E->cap *= 2;
-    E->key = calloc(E->cap, sizeof *E->key);
-    E->slot = calloc(E->cap, sizeof *E->slot);
-    if (E->key == NULL || E->slot == NULL)
-        abort();
-    for (size_t i = 0; i < oc; i++)
-        if (ok[i] != NULL) {
-            size_t h = hsh(ok[i], E->cap);
-            while (E->key[h] != NULL)
-                h = (h + 1) & (E->cap - 1);
-            E->key[h] = ok[i];
-            E->slot[h] = os[i];
-        }
-    free(ok);
-    free(os);
+    hl_memo_val *v = hl_memo_get(&E->memo, e);
+    return v ? E->arena + (size_t)v->l * E->L : NULL;
 }
 
 /* A new memo entry for e; returns its index in the arena. */
 static size_t memo_add(ev *E, const hl_expr *e)
 {
-    if (2 * (E->used + 1) > E->cap)
-        memo_grow(E);
     if (E->used + 1 > E->arena_cap) {
         E->arena_cap *= 2;
         E->arena = realloc(E->arena, E->arena_cap * E->L * sizeof(dn));
         if (E->arena == NULL)
             abort();
     }
-    size_t h = hsh(e, E->cap);
-    while (E->key[h] != NULL)
-        h = (h + 1) & (E->cap - 1);
-    E->key[h] = e;
-    E->slot[h] = (int)E->used;
+    hl_memo_put(&E->memo, e)->l = (long)E->used;
     return E->used++;
 }
 
@@ -201,26 +151,15 @@ static int fail(ev *E, int status, const char *msg, const char *arg)
 
 static void s_mul(dn *x, const dn *a, const dn *b, int L)
 {
-    for (int k = L - 1; k >= 0; k--) {
-        dn t = {0, 0};
-        for (int j = 0; j <= k; j++)
-            t = dadd(t, dmul(a[j], b[k - j]));
-        x[k] = t;
-    }
-}
-
-static int valuation(const dn *a, int L)
-{
-    int v = 0;
-    while (v < L && dzero(a[v]))
-        v++;
-    return v;
+    dual_series_op(a == b ? HL_OP_SQR : HL_OP_MUL, L, x, NULL, a, b, 0);
 }
 
 /* x = a / b; x must not alias a or b. */
 static int s_div(ev *E, dn *x, const dn *a, const dn *b)
 {
-    int L = E->L, v = valuation(b, L);
+    int L = E->L, v = 0; /* b's valuation */
+    while (v < L && dzero(b[v]))
+        v++;
     if (v == L)
         return fail(E, HL_EDOM, "division by a series that is zero", NULL);
     if (b[v].r == 0)
@@ -228,34 +167,20 @@ static int s_div(ev *E, dn *x, const dn *a, const dn *b)
     for (int j = 0; j < v; j++)
         if (fabs(a[j].r) > 1e-13 * (fabs(a[v].r) + 1) || fabs(a[j].e) > 1e-13 * (fabs(a[v].e) + 1))
             return fail(E, HL_EDOM, "division by a series vanishing at D = 0", NULL);
-    for (int k = 0; k < L; k++) {
-        if (k + v >= L) {
-            x[k] = (dn){0, 0}; /* beyond what is known: only higher orders read it */
-            continue;
-        }
-        dn t = a[k + v];
-        for (int j = 1; j <= k; j++)
-            t = dsub(t, dmul(b[v + j], x[k - j]));
-        x[k] = ddiv(t, b[v]);
-    }
+    /* (a/D^v) / (b/D^v); beyond L - v unknown, read by higher orders only */
+    memset(x, 0, (size_t)L * sizeof *x);
+    dual_series_op(HL_OP_DIV, L - v, x, NULL, a + v, b + v, 0);
     return HL_OK;
 }
 
-/* x = a^c for real c, a_0 != 0: (1/(k a_0)) sum_{j<k} (c(k-j) - j) a_{k-j} x_j. */
+/* x = a^c for real c, a_0 != 0 */
 static int s_powr(ev *E, dn *x, const dn *a, double c)
 {
     if (a[0].r == 0)
         return fail(E, HL_EDOM, "non-integer power of a series vanishing at D = 0", NULL);
     if (a[0].r < 0 && c != floor(c))
         return fail(E, HL_EDOM, "non-integer power of a negative value", NULL);
-    double p = pow(a[0].r, c);
-    x[0] = (dn){p, c * pow(a[0].r, c - 1) * a[0].e};
-    for (int k = 1; k < E->L; k++) {
-        dn t = {0, 0};
-        for (int j = 0; j < k; j++)
-            t = dadd(t, dscal(dmul(a[k - j], x[j]), c * (k - j) - j));
-        x[k] = ddiv(dscal(t, 1.0 / k), a[0]);
-    }
+    dual_series_op(HL_OP_POWK, E->L, x, NULL, a, NULL, c);
     return HL_OK;
 }
 
@@ -274,46 +199,6 @@ static void s_powi(dn *x, const dn *a, long n, int L, dn *t1, dn *t2)
             s_mul(t2, t1, t1, L);
             memcpy(t1, t2, (size_t)L * sizeof *x);
         }
-    }
-}
-
-/* x = f(a) from g = f'(a) (a series): x_0 = f0, x_k = (1/k) sum j a_j g_{k-j}. */
-static void s_integrate(dn *x, const dn *a, const dn *g, dn f0, int L)
-{
-    x[0] = f0;
-    for (int k = 1; k < L; k++) {
-        dn t = {0, 0};
-        for (int j = 1; j <= k; j++)
-            t = dadd(t, dscal(dmul(a[j], g[k - j]), j));
-        x[k] = dscal(t, 1.0 / k);
-    }
-}
-
-static void s_exp(dn *x, const dn *a, int L)
-{
-    double e0 = exp(a[0].r);
-    x[0] = (dn){e0, e0 * a[0].e};
-    for (int k = 1; k < L; k++) {
-        dn t = {0, 0};
-        for (int j = 1; j <= k; j++)
-            t = dadd(t, dscal(dmul(a[j], x[k - j]), j));
-        x[k] = dscal(t, 1.0 / k);
-    }
-}
-
-static void s_sincos(dn *sn, dn *cs, const dn *a, int L)
-{
-    double s0 = sin(a[0].r), c0 = cos(a[0].r);
-    sn[0] = (dn){s0, c0 * a[0].e};
-    cs[0] = (dn){c0, -s0 * a[0].e};
-    for (int k = 1; k < L; k++) {
-        dn ts = {0, 0}, tc = {0, 0};
-        for (int j = 1; j <= k; j++) {
-            ts = dadd(ts, dscal(dmul(a[j], cs[k - j]), j));
-            tc = dsub(tc, dscal(dmul(a[j], sn[k - j]), j));
-        }
-        sn[k] = dscal(ts, 1.0 / k);
-        cs[k] = dscal(tc, 1.0 / k);
     }
 }
 
@@ -394,97 +279,60 @@ static int is_num(const hl_expr *e, double *c, long *ci, int *integer)
     return 1;
 }
 
-static int eval_fun(ev *E, dn *x, hl_fun f, const dn *a)
+/* The domain of f at a_0, where its rule would divide by zero or leave
+ * the reals. */
+static int check_domain(ev *E, hl_fun f, dn a0, dn b0)
 {
-    int L = E->L;
-    dn *t = hl_xmalloc((size_t)3 * L * sizeof *t), *u = t + L, *w = u + L;
-    int st = HL_OK;
+    double w0 = f == HL_SQRT ? a0.r : 1 - a0.r * a0.r; /* sqrt(a), or sqrt(1 - a^2) */
     switch (f) {
-    case HL_SIN: s_sincos(x, t, a, L); break;
-    case HL_COS: s_sincos(t, x, a, L); break;
-    case HL_TAN: s_sincos(t, u, a, L); st = s_div(E, x, t, u); break;
-    case HL_EXP: s_exp(x, a, L); break;
-    case HL_SINH: case HL_COSH: case HL_TANH:
-        for (int k = 0; k < L; k++)
-            w[k] = dscal(a[k], -1);
-        s_exp(t, a, L);
-        s_exp(u, w, L);
-        for (int k = 0; k < L; k++) {
-            dn sp = dscal(dsub(t[k], u[k]), 0.5), cp = dscal(dadd(t[k], u[k]), 0.5);
-            t[k] = sp, u[k] = cp;
-        }
-        if (f == HL_TANH)
-            st = s_div(E, x, t, u);
-        else
-            memcpy(x, f == HL_SINH ? t : u, (size_t)L * sizeof *x);
-        break;
-    case HL_SQRT: st = s_powr(E, x, a, 0.5); break;
     case HL_LOG:
-        if (a[0].r <= 0)
-            return free(t), fail(E, HL_EDOM, "log of a non-positive value", NULL);
-        w[0] = (dn){1, 0};
-        for (int k = 1; k < L; k++)
-            w[k] = (dn){0, 0};
-        if ((st = s_div(E, u, w, a)) == HL_OK)
-            s_integrate(x, a, u, (dn){log(a[0].r), a[0].e / a[0].r}, L);
-        break;
-    case HL_ATAN: case HL_ASIN: case HL_ACOS: {
-        s_mul(w, a, a, L); /* a^2 */
-        for (int k = 0; k < L; k++)
-            w[k] = f == HL_ATAN ? w[k] : dscal(w[k], -1);
-        w[0].r += 1; /* 1 + a^2 or 1 - a^2 */
-        if (f == HL_ATAN) {
-            for (int k = 0; k < L; k++)
-                t[k] = (dn){k == 0, 0};
-            st = s_div(E, u, t, w);
-        } else
-            st = s_powr(E, u, w, -0.5);
-        if (st != HL_OK)
-            break;
-        if (f == HL_ACOS)
-            for (int k = 0; k < L; k++)
-                u[k] = dscal(u[k], -1);
-        double v0 = f == HL_ATAN ? atan(a[0].r) : f == HL_ASIN ? asin(a[0].r) : acos(a[0].r);
-        s_integrate(x, a, u, (dn){v0, u[0].r * a[0].e}, L);
-        break;
-    }
+        return a0.r <= 0 ? fail(E, HL_EDOM, "log of a non-positive value", NULL) : HL_OK;
+    case HL_TAN:
+    case HL_ATAN2: /* by cos a, by a^2 + b^2 */
+        if (f == HL_TAN ? cos(a0.r) == 0 : a0.r == 0 && b0.r == 0)
+            return fail(E, HL_EDOM, "division by a series vanishing at D = 0", NULL);
+        return HL_OK;
+    case HL_SQRT:
+    case HL_ASIN:
+    case HL_ACOS:
+        if (w0 == 0)
+            return fail(E, HL_EDOM, "non-integer power of a series vanishing at D = 0", NULL);
+        return w0 < 0 ? fail(E, HL_EDOM, "non-integer power of a negative value", NULL) : HL_OK;
     default:
-        st = fail(E, HL_EUNSUP, "function not supported in series", hl_fun_name(f));
+        return HL_OK;
     }
-    free(t);
-    return st;
 }
 
-/* x = atan2(y, x) of e's operands: x' = (b a' - a b')/(a^2 + b^2) with
- * a = y, b = x, integrated as b/s along a minus a/s along b. */
-static int eval_atan2(ev *E, dn *x, const hl_expr *e)
+/* The operation of f; cos and cosh are their pair's second series. */
+static hl_op op_of_fun(hl_fun f, int *second)
 {
-    int L = E->L, st;
-    dn *a = hl_xmalloc((size_t)6 * L * sizeof *a), *b = a + L, *s = b + L, *u = s + L,
-       *v = u + L, *t = v + L, *p;
-    if ((st = eval(E, e->a, &p)) == HL_OK) {
-        memcpy(a, p, (size_t)L * sizeof *a);
-        st = eval(E, e->b, &p);
-    }
-    if (st == HL_OK) {
-        memcpy(b, p, (size_t)L * sizeof *b);
-        s_mul(s, a, a, L);
-        s_mul(t, b, b, L);
-        for (int k = 0; k < L; k++)
-            s[k] = dadd(s[k], t[k]);
-        if ((st = s_div(E, u, b, s)) == HL_OK)
-            st = s_div(E, v, a, s);
-    }
-    if (st == HL_OK) {
-        double r2 = s[0].r;
-        dn x0 = {atan2(a[0].r, b[0].r), (b[0].r * a[0].e - a[0].r * b[0].e) / r2};
-        s_integrate(x, a, u, x0, L);
-        s_integrate(t, b, v, (dn){0, 0}, L);
-        for (int k = 0; k < L; k++)
-            x[k] = dsub(x[k], t[k]);
-    }
-    free(a);
-    return st;
+    static const hl_op op[HL_FUN_COUNT] = {
+        [HL_SIN] = HL_OP_SINCOS,    [HL_COS] = HL_OP_SINCOS, [HL_SINH] = HL_OP_SINHCOSH,
+        [HL_COSH] = HL_OP_SINHCOSH, [HL_TAN] = HL_OP_TAN,    [HL_TANH] = HL_OP_TANH,
+        [HL_EXP] = HL_OP_EXP,       [HL_LOG] = HL_OP_LOG,    [HL_SQRT] = HL_OP_SQRT,
+        [HL_ATAN] = HL_OP_ATAN,     [HL_ASIN] = HL_OP_ASIN,  [HL_ACOS] = HL_OP_ACOS,
+        [HL_ATAN2] = HL_OP_ATAN2,
+    };
+    *second = f == HL_COS || f == HL_COSH;
+    return op[f];
+}
+
+/* x = f(a, b) (b: atan2's x, else NULL) */
+static int eval_fun(ev *E, dn *x, hl_fun f, const dn *a, const dn *b)
+{
+    int L = E->L, st, second;
+    if ((unsigned)f >= HL_FUN_COUNT || (f != HL_ATAN2) != (b == NULL))
+        return fail(E, HL_EUNSUP, "function not supported in series", hl_fun_name(f));
+    if ((st = check_domain(E, f, a[0], b ? b[0] : a[0])) != HL_OK)
+        return st;
+    dn *t = hl_xmalloc((size_t)L * sizeof *t);
+    hl_op op = op_of_fun(f, &second);
+    if (second)
+        dual_series_op(op, L, t, x, a, b, 0);
+    else
+        dual_series_op(op, L, x, t, a, b, 0);
+    free(t);
+    return HL_OK;
 }
 
 /* *out points into the arena (valid until the next memo_add: copy first). */
@@ -505,20 +353,19 @@ static int eval(ev *E, const hl_expr *e, dn **out)
     case HL_NUM: x[0].r = fmpq_get_d(e->num); break;
     case HL_PI: x[0].r = M_PI; break;
     case HL_SYM: st = eval_sym(E, x, e->name); break;
-    case HL_NEG: case HL_FUN:
-        if (e->b != NULL) { /* atan2(y, x) */
-            st = eval_atan2(E, x, e);
-            break;
-        }
+    case HL_NEG:
+    case HL_FUN:
         if ((st = eval(E, e->a, &p)) != HL_OK)
             break;
-        a = hl_xmalloc((size_t)L * sizeof *a);
+        a = hl_xmalloc((size_t)2 * L * sizeof *a);
         memcpy(a, p, (size_t)L * sizeof *a);
-        if (e->kind == HL_NEG)
-            for (int k = 0; k < L; k++)
-                x[k] = dscal(a[k], -1);
-        else
-            st = eval_fun(E, x, e->fun, a);
+        b = e->b ? a + L : NULL; /* atan2(y, x) */
+        if (b && (st = eval(E, e->b, &p)) == HL_OK)
+            memcpy(b, p, (size_t)L * sizeof *b);
+        if (st == HL_OK && e->kind == HL_NEG)
+            dual_series_op(HL_OP_NEG, L, x, NULL, a, NULL, 0);
+        else if (st == HL_OK)
+            st = eval_fun(E, x, e->fun, a, b);
         break;
     default: /* binary */
         if ((st = eval(E, e->a, &p)) != HL_OK)
@@ -544,15 +391,19 @@ static int eval(ev *E, const hl_expr *e, dn **out)
             break;
         memcpy(b, p, (size_t)L * sizeof *b);
         switch (e->kind) {
-        case HL_ADD: for (int k = 0; k < L; k++) x[k] = dadd(a[k], b[k]); break;
-        case HL_SUB: for (int k = 0; k < L; k++) x[k] = dsub(a[k], b[k]); break;
+        case HL_ADD:
+            dual_series_op(HL_OP_ADD, L, x, NULL, a, b, 0);
+            break;
+        case HL_SUB:
+            dual_series_op(HL_OP_SUB, L, x, NULL, a, b, 0);
+            break;
         case HL_MUL: s_mul(x, a, b, L); break;
         case HL_DIV: st = s_div(E, x, a, b); break;
         default: { /* a^b = exp(b log a) */
             dn *t = hl_xmalloc((size_t)2 * L * sizeof *t);
-            if ((st = eval_fun(E, t, HL_LOG, a)) == HL_OK) {
+            if ((st = eval_fun(E, t, HL_LOG, a, NULL)) == HL_OK) {
                 s_mul(t + L, t, b, L);
-                s_exp(x, t + L, L);
+                dual_series_op(HL_OP_EXP, L, x, NULL, t + L, NULL, 0);
             }
             free(t);
         }

@@ -1,21 +1,26 @@
 /* Taylor coefficients of an expression in one symbol, as expressions.
  *
- * The recurrences are those of the tape's Taylor mode (tape.h), applied to
- * expressions instead of numbers: each node gets its K + 1 coefficients,
- * built from its operands' through the folding constructors (fold.h), so a
- * coefficient that vanishes is the number 0 and costs nothing further.  A
- * function of an argument linear in the symbol (sin(q + s h)) takes its
- * closed-form coefficients, +-f^(k) h^k/k!, with the powers built in a tree
- * so the compiled code waits on few products.  A node whose operands'
- * series are constant keeps its own expression. */
+ * Each node gets its K + 1 coefficients from its operands' by the rule of
+ * its operation (rules/rule.h), run with an emitter whose values are
+ * expressions built by the folding constructors (fold.h), so a coefficient
+ * that vanishes is the number 0 and costs nothing further.  A node whose
+ * operands' series are constant keeps its own expression.
+ *
+ * One shortcut, an optimisation only: a function of an argument linear in
+ * the symbol (sin(q + s h), exp(q + s h)) takes its closed-form
+ * coefficients, +-f^(k) h^k/k!, with the powers built in a tree, so the
+ * compiled code waits on about log2 k products rather than on the
+ * recurrence's chain of k. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "expr/fold.h"
 #include "base/memo.h"
 #include "base/buf.h"
+#include "rules/rule.h"
 
 typedef struct taylor_walk {
+    hl_em em; /* the rules' emitter (first: the rules pass &em) */
     hl_pool *pool;
     const char *var;
     const hl_expr *at, *zero;
@@ -23,6 +28,11 @@ typedef struct taylor_walk {
     hl_memo done; /* node -> index in series[] */
     const hl_expr ***series;
     int count, cap;
+    /* the rule being run: its series, B's coefficient 0 for a^c, what it keeps */
+    const hl_expr **slot[HL_SLOT_COUNT];
+    const hl_expr *exponent;
+    const hl_expr *keep[2];
+    const hl_expr **aux; /* X when the caller does not want it */
 } taylor_walk;
 
 static const hl_expr **new_series(taylor_walk *w)
@@ -57,53 +67,167 @@ static const hl_expr *num(taylor_walk *w, long p, unsigned long q)
     return hl_num_frac(w->pool, p, q);
 }
 
-/* (a * b)[k] */
-static const hl_expr *cauchy(taylor_walk *w, const hl_expr *const *a, const hl_expr *const *b,
-                             int k)
+/* ---- the emitter: values are expressions ---------------------------------------- */
+
+static taylor_walk *walk_of(hl_em *em)
 {
-    const hl_expr *s = w->zero;
-    for (int j = 0; j <= k; j++)
-        s = hl_fold_add(w->pool, s, hl_fold_mul(w->pool, a[j], b[k - j]));
-    return s;
+    return (taylor_walk *)em;
 }
 
-/* sum_{j=lo..hi} ((j / k) a[j]) b[k-j]: the weighted sums of exp, sin, ...
- * The weight goes on a, the operand's series, known before the recurrence
- * starts, so that each order waits on b (the recurrence's own) for one
- * product only. */
-static const hl_expr *weighted(taylor_walk *w, const hl_expr *const *a, const hl_expr *const *b,
-                               int k, int lo, int hi)
+static hl_ev ev_of(const hl_expr *e)
+{
+    hl_ev v;
+    v.p = (void *)e;
+    return v;
+}
+
+static const hl_expr *ex(hl_ev v)
+{
+    return v.p;
+}
+
+static hl_ev em_num(hl_em *em, long p, long q)
+{
+    return ev_of(num(walk_of(em), p, (unsigned long)q));
+}
+
+static hl_ev em_coef(hl_em *em, hl_slot s, int j)
+{
+    taylor_walk *w = walk_of(em);
+    if (s == HL_SLOT_B && w->exponent) /* a^c: c is B's coefficient 0 */
+        return ev_of(j == 0 ? w->exponent : w->zero);
+    return ev_of(w->slot[s][j]);
+}
+
+static void em_store(hl_em *em, hl_slot s, int j, hl_ev v)
+{
+    walk_of(em)->slot[s][j] = ex(v);
+}
+
+static hl_ev em_add(hl_em *em, hl_ev a, hl_ev b)
+{
+    return ev_of(hl_fold_add(walk_of(em)->pool, ex(a), ex(b)));
+}
+
+static hl_ev em_sub(hl_em *em, hl_ev a, hl_ev b)
+{
+    return ev_of(hl_fold_sub(walk_of(em)->pool, ex(a), ex(b)));
+}
+
+static hl_ev em_mul(hl_em *em, hl_ev a, hl_ev b)
+{
+    return ev_of(hl_fold_mul(walk_of(em)->pool, ex(a), ex(b)));
+}
+
+static hl_ev em_neg(hl_em *em, hl_ev a)
+{
+    return ev_of(hl_fold_neg(walk_of(em)->pool, ex(a)));
+}
+
+static hl_ev em_div(hl_em *em, hl_ev a, hl_ev b)
+{
+    return ev_of(hl_fold_div(walk_of(em)->pool, ex(a), ex(b)));
+}
+
+static hl_ev em_fma(hl_em *em, hl_ev a, hl_ev b, hl_ev c)
+{
+    return em_add(em, em_mul(em, a, b), c);
+}
+
+static const hl_fun fun_of_pfn[HL_PFN_COUNT] = {
+    [HL_PFN_SIN] = HL_SIN,     [HL_PFN_COS] = HL_COS,   [HL_PFN_TAN] = HL_TAN,
+    [HL_PFN_SINH] = HL_SINH,   [HL_PFN_COSH] = HL_COSH, [HL_PFN_TANH] = HL_TANH,
+    [HL_PFN_EXP] = HL_EXP,     [HL_PFN_LOG] = HL_LOG,   [HL_PFN_SQRT] = HL_SQRT,
+    [HL_PFN_ATAN] = HL_ATAN,   [HL_PFN_ASIN] = HL_ASIN, [HL_PFN_ACOS] = HL_ACOS,
+    [HL_PFN_ATAN2] = HL_ATAN2,
+};
+
+/* a^c at order 0 in the node's own form, so that it is the node of the
+ * same power written elsewhere (Gonzalez's remainder cancels its term of
+ * order 0 exactly) */
+static hl_ev em_call(hl_em *em, hl_pfn f, hl_ev a, hl_ev b)
+{
+    hl_pool *pool = walk_of(em)->pool;
+    if (f == HL_PFN_POW)
+        return ev_of(hl_fold_pow(pool, ex(a), ex(b)));
+    if (f == HL_PFN_ATAN2)
+        return ev_of(hl_call2(pool, HL_ATAN2, ex(a), ex(b)));
+    return ev_of(hl_call(pool, fun_of_pfn[f], ex(a)));
+}
+
+/* term j of a convolution (rules/rule.h: where the weight goes) */
+static const hl_expr *conv_term(taylor_walk *w, const hl_conv *c, int j)
 {
     hl_pool *pool = w->pool;
-    const hl_expr *s = w->zero;
-    for (int j = lo; j <= hi; j++) {
-        const hl_expr *wa = hl_fold_mul(pool, num(w, j, (unsigned long)k), a[j]);
-        s = hl_fold_add(pool, s, hl_fold_mul(pool, wa, b[k - j]));
-    }
-    return s;
+    const hl_expr *x = w->slot[c->x][j], *y = w->slot[c->y][c->k - j], *wt = NULL;
+    if (c->weighted)
+        wt = hl_fold_add(pool, hl_fold_mul(pool, ex(c->wa), hl_num_si(pool, j)), ex(c->wb));
+    else if (c->sym && 2 * j < c->k)
+        wt = hl_num_si(pool, 2);
+    if (wt == NULL)
+        return hl_fold_mul(pool, x, y);
+    if (j == c->k && j > 0) /* a fresh x[k]: (w y[0]) x[k] */
+        return hl_fold_mul(pool, hl_fold_mul(pool, wt, y), x);
+    return hl_fold_mul(pool, hl_fold_mul(pool, wt, x), y);
 }
 
-static void mul_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *a,
-                       const hl_expr *const *b)
+/* The sum in hl_conv_plan's order, so that the expression adds as the
+ * double back ends do. */
+static hl_ev em_conv(hl_em *em, const hl_conv *c, int *has)
 {
+    taylor_walk *w = walk_of(em);
+    int n = c->hi - c->lo + 1 > 0 ? c->hi - c->lo + 1 : 0;
+    int *idx = hl_xmalloc((size_t)(n + 1) * 2 * sizeof *idx), *lane = idx + n + 1, nk, fresh[2], nf;
+    hl_conv_plan(c, idx, lane, &nk, fresh, &nf);
+    const hl_expr *l[4] = {NULL, NULL, NULL, NULL}, *s = NULL;
+    for (int i = 0; i < nk; i++) {
+        const hl_expr *t = conv_term(w, c, idx[i]);
+        l[lane[i]] = l[lane[i]] ? hl_fold_add(w->pool, l[lane[i]], t) : t;
+    }
+    for (int h = 0; h < 2; h++) { /* (l0 + l1) + (l2 + l3), empty lanes left out */
+        const hl_expr *p = l[2 * h] && l[2 * h + 1] ? hl_fold_add(w->pool, l[2 * h], l[2 * h + 1])
+                           : l[2 * h]               ? l[2 * h]
+                                                    : l[2 * h + 1];
+        if (p)
+            s = s ? hl_fold_add(w->pool, s, p) : p;
+    }
+    for (int i = 0; i < nf; i++) {
+        const hl_expr *t = conv_term(w, c, fresh[i]);
+        s = s ? hl_fold_add(w->pool, s, t) : t;
+    }
+    free(idx);
+    *has = s != NULL;
+    return ev_of(s ? s : w->zero);
+}
+
+static void em_keep(hl_em *em, int slot, hl_ev v)
+{
+    walk_of(em)->keep[slot] = ex(v);
+}
+
+static hl_ev em_kept(hl_em *em, int slot)
+{
+    return ev_of(walk_of(em)->keep[slot]);
+}
+
+static const hl_em_ops expr_em_ops = {em_num, em_coef, em_store, em_add,  em_sub,  em_mul, em_neg,
+                                      em_div, em_fma,  em_call,  em_conv, em_keep, em_kept};
+
+/* d (and x, the rule's second series, when wanted) = op(a, b), orders 0..K */
+static void run_rule(taylor_walk *w, hl_op op, const hl_expr **d, const hl_expr **x,
+                     const hl_expr *const *a, const hl_expr *const *b)
+{
+    w->slot[HL_SLOT_D] = d;
+    w->slot[HL_SLOT_X] = x ? x : w->aux;
+    w->slot[HL_SLOT_A] = (const hl_expr **)a;
+    w->slot[HL_SLOT_B] = (const hl_expr **)b;
+    const hl_rule *rule = hl_rule_of(op);
     for (int k = 0; k <= w->K; k++)
-        r[k] = cauchy(w, a, b, k);
+        rule->taylor(&w->em, k);
+    w->exponent = NULL;
 }
 
-/* r = a / b: r[k] = (a[k] - sum_{j=1..k} b[j] r[k-j]) / b[0] */
-static void div_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *a,
-                       const hl_expr *const *b)
-{
-    hl_pool *pool = w->pool;
-    const hl_expr *inv = hl_fold_div(pool, hl_num_si(pool, 1), b[0]);
-    r[0] = hl_fold_div(pool, a[0], b[0]);
-    for (int k = 1; k <= w->K; k++) {
-        const hl_expr *s = a[k];
-        for (int j = 1; j <= k; j++)
-            s = hl_fold_sub(pool, s, hl_fold_mul(pool, b[j], r[k - j]));
-        r[k] = hl_fold_mul(pool, s, inv);
-    }
-}
+/* ---- the nodes ---------------------------------------------------------------- */
 
 /* r = a^n, n >= 0, by binary powering: exact where a[0] = 0. */
 static void int_pow_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *a, long n)
@@ -115,32 +239,19 @@ static void int_pow_series(taylor_walk *w, const hl_expr **r, const hl_expr *con
         base[k] = a[k], r[k] = k == 0 ? hl_num_si(w->pool, 1) : w->zero;
     for (; n > 0; n >>= 1) {
         if (n & 1) {
-            mul_series(w, tmp, r, base);
+            run_rule(w, HL_OP_MUL, tmp, NULL, r, base);
             memcpy(r, tmp, (size_t)(K + 1) * sizeof *r);
         }
         if (n > 1) {
-            mul_series(w, tmp, base, base);
+            run_rule(w, HL_OP_SQR, tmp, NULL, base, NULL);
             memcpy(base, tmp, (size_t)(K + 1) * sizeof *base);
         }
     }
     free(base), free(tmp);
 }
 
-/* r = 1/a, by the division recurrence */
-static void inverse_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *a)
-{
-    const hl_expr **one = hl_xmalloc((size_t)(w->K + 1) * sizeof *one);
-    for (int k = 0; k <= w->K; k++)
-        one[k] = k == 0 ? hl_num_si(w->pool, 1) : w->zero;
-    div_series(w, r, one, a);
-    free(one);
-}
-
 /* r = a^c, c free of the variable: an integer |c| <= 64 by binary powering
- * (then 1/a^|c| for c < 0), else (sum_{j<k} (c(k-j) - j) a[k-j] r[j]) /
- * (k a[0]).  Order 0 is a[0]^c in the node's own form, so that it is the
- * node of the same power written elsewhere (Gonzalez's remainder cancels
- * its term of order 0 exactly). */
+ * (then 1/a^|c| by the division rule), else by the rule of a^c. */
 static void pow_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *a, const hl_expr *c)
 {
     hl_pool *pool = w->pool;
@@ -150,25 +261,19 @@ static void pow_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *
         long n = fmpz_get_si(fmpq_numref(c->num));
         int_pow_series(w, r, a, labs(n));
         if (n < 0) {
-            const hl_expr **pos = hl_xmalloc((size_t)(K + 1) * sizeof *pos);
+            const hl_expr **pos = hl_xmalloc((size_t)(K + 1) * 2 * sizeof *pos),
+                          **one = pos + K + 1;
             memcpy(pos, r, (size_t)(K + 1) * sizeof *r);
-            inverse_series(w, r, pos);
+            for (int k = 0; k <= K; k++)
+                one[k] = k == 0 ? hl_num_si(pool, 1) : w->zero;
+            run_rule(w, HL_OP_DIV, r, NULL, one, pos);
             free(pos);
         }
-        r[0] = hl_fold_pow(pool, a[0], c);
+        r[0] = hl_fold_pow(pool, a[0], c); /* the node's own form, as em_call */
         return;
     }
-    r[0] = hl_fold_pow(pool, a[0], c);
-    const hl_expr *inv = hl_fold_div(pool, hl_num_si(pool, 1), a[0]);
-    for (int k = 1; k <= K; k++) {
-        const hl_expr *s = w->zero;
-        for (int j = 0; j < k; j++) {
-            const hl_expr *f =
-                hl_fold_sub(pool, hl_fold_mul(pool, c, hl_num_si(pool, k - j)), hl_num_si(pool, j));
-            s = hl_fold_add(pool, s, hl_fold_mul(pool, f, hl_fold_mul(pool, a[k - j], r[j])));
-        }
-        r[k] = hl_fold_mul(pool, hl_fold_mul(pool, num(w, 1, (unsigned long)k), s), inv);
-    }
+    w->exponent = c;
+    run_rule(w, HL_OP_POWK, r, NULL, a, NULL);
 }
 
 /* Is the series a[0] + a[1] t (the argument of sin(q + s h))? */
@@ -202,155 +307,62 @@ static void scaled_powers(taylor_walk *w, const hl_expr **pw, const hl_expr *a1)
 
 static void exp_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *a)
 {
-    r[0] = hl_call(w->pool, HL_EXP, a[0]);
-    if (is_linear(w, a)) {
-        const hl_expr **pw = hl_xmalloc((size_t)(w->K + 1) * sizeof *pw);
-        scaled_powers(w, pw, a[1]);
-        for (int k = 1; k <= w->K; k++)
-            r[k] = hl_fold_mul(w->pool, r[0], pw[k]);
-        free(pw);
+    if (!is_linear(w, a)) {
+        run_rule(w, HL_OP_EXP, r, NULL, a, NULL);
         return;
     }
+    r[0] = hl_call(w->pool, HL_EXP, a[0]);
+    const hl_expr **pw = hl_xmalloc((size_t)(w->K + 1) * sizeof *pw);
+    scaled_powers(w, pw, a[1]);
     for (int k = 1; k <= w->K; k++)
-        r[k] = weighted(w, a, r, k, 1, k);
+        r[k] = hl_fold_mul(w->pool, r[0], pw[k]);
+    free(pw);
 }
 
-/* r = log a: r[k] = (a[k] - sum_{j=1..k-1} (j/k) r[j] a[k-j]) / a[0] */
-static void log_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *a)
-{
-    hl_pool *pool = w->pool;
-    r[0] = hl_call(pool, HL_LOG, a[0]);
-    for (int k = 1; k <= w->K; k++)
-        r[k] = hl_fold_div(pool, hl_fold_sub(pool, a[k], weighted(w, r, a, k, 1, k - 1)), a[0]);
-}
-
-/* r = sqrt a: r[k] = (a[k] - sum_{j=1..k-1} r[j] r[k-j]) / (2 r[0]) */
-static void sqrt_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *a)
-{
-    hl_pool *pool = w->pool;
-    r[0] = hl_call(pool, HL_SQRT, a[0]);
-    const hl_expr *half_inv = hl_fold_div(pool, num(w, 1, 2), r[0]);
-    for (int k = 1; k <= w->K; k++) {
-        const hl_expr *s = a[k];
-        for (int j = 1; j < k; j++)
-            s = hl_fold_sub(pool, s, hl_fold_mul(pool, r[j], r[k - j]));
-        r[k] = hl_fold_mul(pool, s, half_inv);
-    }
-}
-
-/* s = sin a, c = cos a (sign -1), or sinh, cosh (sign +1):
- * s[k] = sum (j/k) a[j] c[k-j], c[k] = sign sum (j/k) a[j] s[k-j] */
+/* s = sin a, c = cos a, or sinh, cosh */
 static void sincos_series(taylor_walk *w, const hl_expr **s, const hl_expr **c,
                           const hl_expr *const *a, int hyperbolic)
 {
     hl_pool *pool = w->pool;
-    s[0] = hl_call(pool, hyperbolic ? HL_SINH : HL_SIN, a[0]);
-    c[0] = hl_call(pool, hyperbolic ? HL_COSH : HL_COS, a[0]);
-    if (is_linear(w, a)) {
-        /* s[k] = sin^(k)(a0) a1^k/k!: sin, cos, -sin, -cos, ...; c[k]
-         * likewise from cos; no signs for sinh, cosh */
-        const hl_expr **pw = hl_xmalloc((size_t)(w->K + 1) * sizeof *pw);
-        scaled_powers(w, pw, a[1]);
-        for (int k = 1; k <= w->K; k++) {
-            int odd = k % 2, neg = !hyperbolic && (k % 4 == 2 || k % 4 == 3);
-            const hl_expr *sk = hl_fold_mul(pool, odd ? c[0] : s[0], pw[k]);
-            const hl_expr *ck = hl_fold_mul(pool, odd ? s[0] : c[0], pw[k]);
-            s[k] = neg ? hl_fold_neg(pool, sk) : sk;
-            /* cos^(k): cos, -sin, -cos, sin */
-            c[k] = !hyperbolic && (k % 4 == 1 || k % 4 == 2) ? hl_fold_neg(pool, ck) : ck;
-        }
-        free(pw);
+    if (!is_linear(w, a)) {
+        run_rule(w, hyperbolic ? HL_OP_SINHCOSH : HL_OP_SINCOS, s, c, a, NULL);
         return;
     }
+    s[0] = hl_call(pool, hyperbolic ? HL_SINH : HL_SIN, a[0]);
+    c[0] = hl_call(pool, hyperbolic ? HL_COSH : HL_COS, a[0]);
+    /* s[k] = sin^(k)(a0) a1^k/k!: sin, cos, -sin, -cos, ...; c[k] likewise
+     * from cos; no signs for sinh, cosh */
+    const hl_expr **pw = hl_xmalloc((size_t)(w->K + 1) * sizeof *pw);
+    scaled_powers(w, pw, a[1]);
     for (int k = 1; k <= w->K; k++) {
-        s[k] = weighted(w, a, c, k, 1, k);
-        const hl_expr *t = weighted(w, a, s, k, 1, k);
-        c[k] = hyperbolic ? t : hl_fold_neg(pool, t);
+        int odd = k % 2, neg = !hyperbolic && (k % 4 == 2 || k % 4 == 3);
+        const hl_expr *sk = hl_fold_mul(pool, odd ? c[0] : s[0], pw[k]);
+        const hl_expr *ck = hl_fold_mul(pool, odd ? s[0] : c[0], pw[k]);
+        s[k] = neg ? hl_fold_neg(pool, sk) : sk;
+        /* cos^(k): cos, -sin, -cos, sin */
+        c[k] = !hyperbolic && (k % 4 == 1 || k % 4 == 2) ? hl_fold_neg(pool, ck) : ck;
     }
-}
-
-/* r = tan a (sign +1) or tanh a (sign -1) with x = 1 + sign r^2:
- * r[k] = sum (j/k) a[j] x[k-j], x[k] = sign (r*r)[k] */
-static void tan_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *a, int hyperbolic)
-{
-    hl_pool *pool = w->pool;
-    const hl_expr **x = hl_xmalloc((size_t)(w->K + 1) * sizeof *x);
-    r[0] = hl_call(pool, hyperbolic ? HL_TANH : HL_TAN, a[0]);
-    for (int k = 0; k <= w->K; k++) {
-        if (k > 0)
-            r[k] = weighted(w, a, x, k, 1, k);
-        const hl_expr *sq = cauchy(w, r, r, k);
-        if (hyperbolic)
-            sq = hl_fold_neg(pool, sq);
-        x[k] = k == 0 ? hl_fold_add(pool, hl_num_si(pool, 1), sq) : sq;
-    }
-    free(x);
-}
-
-/* atan, asin, acos: r' = sign a' / x with x = 1 + a^2 or sqrt(1 - a^2):
- * r[k] = (sign a[k] - sum_{j=1..k-1} (j/k) r[j] x[k-j]) / x[0] */
-static void arc_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *a, hl_fun f)
-{
-    hl_pool *pool = w->pool;
-    int K = w->K;
-    const hl_expr **x = hl_xmalloc((size_t)(K + 1) * sizeof *x);
-    const hl_expr **one_minus = hl_xmalloc((size_t)(K + 1) * sizeof *one_minus);
-    for (int k = 0; k <= K; k++) {
-        const hl_expr *sq = cauchy(w, a, a, k);
-        if (f == HL_ATAN)
-            x[k] = k == 0 ? hl_fold_add(pool, hl_num_si(pool, 1), sq) : sq;
-        else
-            one_minus[k] =
-                k == 0 ? hl_fold_sub(pool, hl_num_si(pool, 1), sq) : hl_fold_neg(pool, sq);
-    }
-    if (f != HL_ATAN)
-        sqrt_series(w, x, one_minus);
-    r[0] = hl_call(pool, f, a[0]);
-    for (int k = 1; k <= K; k++) {
-        const hl_expr *ak = f == HL_ACOS ? hl_fold_neg(pool, a[k]) : a[k];
-        r[k] = hl_fold_div(pool, hl_fold_sub(pool, ak, weighted(w, r, x, k, 1, k - 1)), x[0]);
-    }
-    free(x), free(one_minus);
-}
-
-/* r = atan2(y, x): r' = g/s with g = x y' - y x', s = x^2 + y^2, so
- * r[k] = (g/s)[k-1] / k */
-static void atan2_series(taylor_walk *w, const hl_expr **r, const hl_expr *const *y,
-                         const hl_expr *const *x)
-{
-    hl_pool *pool = w->pool;
-    int K = w->K;
-    const hl_expr **g = hl_xmalloc((size_t)(K + 1) * sizeof *g);
-    const hl_expr **s = hl_xmalloc((size_t)(K + 1) * sizeof *s);
-    const hl_expr **h = hl_xmalloc((size_t)(K + 1) * sizeof *h);
-    for (int m = 0; m <= K; m++) {
-        g[m] = w->zero;
-        s[m] = hl_fold_add(pool, cauchy(w, x, x, m), cauchy(w, y, y, m));
-    }
-    for (int m = 0; m < K; m++) /* g[m] = sum_j (j+1) (x[m-j] y[j+1] - y[m-j] x[j+1]) */
-        for (int j = 0; j <= m; j++) {
-            const hl_expr *c = num(w, j + 1, 1);
-            const hl_expr *t = hl_fold_sub(pool, hl_fold_mul(pool, x[m - j], y[j + 1]),
-                                           hl_fold_mul(pool, y[m - j], x[j + 1]));
-            g[m] = hl_fold_add(pool, g[m], hl_fold_mul(pool, c, t));
-        }
-    div_series(w, h, g, s);
-    r[0] = hl_call2(pool, HL_ATAN2, y[0], x[0]);
-    for (int k = 1; k <= K; k++)
-        r[k] = hl_fold_mul(pool, num(w, 1, (unsigned long)k), h[k - 1]);
-    free(g), free(s), free(h);
+    free(pw);
 }
 
 static const hl_expr *const *series_of(taylor_walk *w, const hl_expr *e);
 
-static void fun_series(taylor_walk *w, const hl_expr **r, const hl_expr *e, const hl_expr *const *a)
+/* The operation of a function other than sin, cos, sinh, cosh and exp. */
+static hl_op op_of_fun(hl_fun f)
+{
+    static const hl_op op[HL_FUN_COUNT] = {
+        [HL_TAN] = HL_OP_TAN,   [HL_TANH] = HL_OP_TANH,   [HL_LOG] = HL_OP_LOG,
+        [HL_SQRT] = HL_OP_SQRT, [HL_ATAN] = HL_OP_ATAN,   [HL_ASIN] = HL_OP_ASIN,
+        [HL_ACOS] = HL_OP_ACOS, [HL_ATAN2] = HL_OP_ATAN2,
+    };
+    return op[f];
+}
+
+static void fun_series(taylor_walk *w, const hl_expr **r, const hl_expr *e, const hl_expr *const *a,
+                       const hl_expr *const *b)
 {
     hl_pool *pool = w->pool;
-    switch (e->fun) {
-    case HL_SIN:
-    case HL_COS:
-    case HL_SINH:
-    case HL_COSH: {
+    if (e->fun == HL_SIN || e->fun == HL_COS || e->fun == HL_SINH || e->fun == HL_COSH) {
         /* both of the pair, remembered under both nodes */
         int hyp = e->fun == HL_SINH || e->fun == HL_COSH;
         const hl_expr *sn = hl_call(pool, hyp ? HL_SINH : HL_SIN, e->a);
@@ -361,69 +373,47 @@ static void fun_series(taylor_walk *w, const hl_expr **r, const hl_expr *e, cons
         remember(w, cs);
         sincos_series(w, s, c, a, hyp);
         memcpy(r, e == sn ? s : c, (size_t)(w->K + 1) * sizeof *r);
-        return;
-    }
-    case HL_EXP:
+    } else if (e->fun == HL_EXP) {
         exp_series(w, r, a);
-        return;
-    case HL_LOG:
-        log_series(w, r, a);
-        return;
-    case HL_SQRT:
-        sqrt_series(w, r, a);
-        return;
-    case HL_TAN:
-        tan_series(w, r, a, 0);
-        return;
-    case HL_TANH:
-        tan_series(w, r, a, 1);
-        return;
-    default:
-        arc_series(w, r, a, e->fun);
-        return; /* ATAN, ASIN, ACOS */
+    } else {
+        run_rule(w, op_of_fun(e->fun), r, NULL, a, b);
     }
 }
 
 static void node_series(taylor_walk *w, const hl_expr **r, const hl_expr *e)
 {
-    hl_pool *pool = w->pool;
     const hl_expr *const *a = e->a ? series_of(w, e->a) : NULL;
     const hl_expr *const *b = e->b ? series_of(w, e->b) : NULL;
     int K = w->K;
     switch (e->kind) {
     case HL_NEG:
-        for (int k = 0; k <= K; k++)
-            r[k] = hl_fold_neg(pool, a[k]);
+        run_rule(w, HL_OP_NEG, r, NULL, a, NULL);
         return;
     case HL_ADD:
+        run_rule(w, HL_OP_ADD, r, NULL, a, b);
+        return;
     case HL_SUB:
-        for (int k = 0; k <= K; k++)
-            r[k] =
-                e->kind == HL_ADD ? hl_fold_add(pool, a[k], b[k]) : hl_fold_sub(pool, a[k], b[k]);
+        run_rule(w, HL_OP_SUB, r, NULL, a, b);
         return;
     case HL_MUL:
-        mul_series(w, r, a, b);
+        run_rule(w, HL_OP_MUL, r, NULL, a, b);
         return;
     case HL_DIV:
-        div_series(w, r, a, b);
+        run_rule(w, HL_OP_DIV, r, NULL, a, b);
         return;
     case HL_POW:
         if (is_constant(w, b)) {
             pow_series(w, r, a, b[0]);
         } else { /* a^b = exp(b log a) */
-            const hl_expr **l = hl_xmalloc((size_t)(K + 1) * sizeof *l);
-            const hl_expr **bl = hl_xmalloc((size_t)(K + 1) * sizeof *bl);
-            log_series(w, l, a);
-            mul_series(w, bl, b, l);
+            const hl_expr **l = hl_xmalloc((size_t)(K + 1) * 2 * sizeof *l), **bl = l + K + 1;
+            run_rule(w, HL_OP_LOG, l, NULL, a, NULL);
+            run_rule(w, HL_OP_MUL, bl, NULL, b, l);
             exp_series(w, r, bl);
-            free(l), free(bl);
+            free(l);
         }
         return;
     default: /* HL_FUN */
-        if (e->fun == HL_ATAN2)
-            atan2_series(w, r, a, b);
-        else
-            fun_series(w, r, e, a);
+        fun_series(w, r, e, a, b);
         return;
     }
 }
@@ -465,7 +455,13 @@ static int series_node(void *w, const hl_expr *e)
 void hl_expr_taylor(const hl_expr **out, hl_pool *pool, const hl_expr *e, const char *var,
                     const hl_expr *at, int K)
 {
-    taylor_walk w = {.pool = pool, .var = var, .at = at, .zero = hl_num_si(pool, 0), .K = K};
+    taylor_walk w = {.em = {&expr_em_ops},
+                     .pool = pool,
+                     .var = var,
+                     .at = at,
+                     .zero = hl_num_si(pool, 0),
+                     .K = K};
+    w.aux = hl_xmalloc((size_t)(K + 1) * sizeof *w.aux);
     hl_memo_init(&w.done);
     hl_expr_postorder(&e, 1, series_node, &w);
     const hl_expr *const *c = series_of(&w, e);
@@ -473,5 +469,6 @@ void hl_expr_taylor(const hl_expr **out, hl_pool *pool, const hl_expr *e, const 
     for (int i = 0; i < w.count; i++)
         free(w.series[i]);
     free(w.series);
+    free(w.aux);
     hl_memo_clear(&w.done);
 }

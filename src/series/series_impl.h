@@ -3,6 +3,7 @@
 #define HAMLIE_SERIES_IMPL_H
 
 #include "hamlie/series.h"
+#include "rules/rule.h"
 
 /* Structurally zero?  For skipping work only: hl_alg_is_zero may run a
  * numeric test (and flag the context) where the canonical form does not
@@ -49,5 +50,29 @@ const hl_series *series_prog_root(const series_prog *p, int i);
  * pass max_terms terms (numerators and denominators; 0: no limit, the
  * default). */
 void series_prog_set_budget(series_prog *p, long max_terms);
+
+/* The exact back end of the rules (emit.c): runs an operation's rule on
+ * hl_alg coefficients.  Before a run the caller points slot[] at the
+ * series of the operands and results, keep at the node's two kept values,
+ * and sets exponent (B's coefficient 0 of a^c, else NULL) and vanishing
+ * (the message when a divisor is zero at D = 0). */
+typedef struct series_val series_val;
+typedef struct series_em {
+    hl_em em;
+    hl_series *slot[HL_SLOT_COUNT];
+    hl_alg *keep;
+    const fmpq *exponent;
+    const char *vanishing;
+    hl_alg_ctx *ctx;
+    hl_error *err;
+    int status;
+    series_val **val; /* temporaries, reused from run to run */
+    int nval, aval;
+} series_em;
+
+void series_em_init(series_em *E, hl_alg_ctx *ctx);
+void series_em_clear(series_em *E);
+/* Coefficient k by the rule; the first error of the run (HL_OK if none). */
+int series_em_run(series_em *E, const hl_rule *rule, int k, hl_error *err);
 
 #endif
