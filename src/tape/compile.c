@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "base/buf.h"
+#include "tape/arb_em_impl.h"
 #include "tape/prog_impl.h"
 
 typedef struct slot {
@@ -681,8 +682,6 @@ hl_status hl_tape_new(hl_tape **out, const hl_expr *const *outs, int nout,
     free(c.def);
     free(c.nodes.s);
     free(c.ins.s);
-    for (int i = 0; i < 4; i++)
-        arb_init(t->tmp[i]);
     if (status == HL_OK) {
         prune(t);
         t->rd = hl_xcalloc((size_t)t->nregs + 1, sizeof *t->rd);
@@ -713,13 +712,12 @@ void hl_tape_free(hl_tape *t)
     free(t->td);
     hl_prog_free(t->tprog);
     hl_prog_free(t->pprog);
+    hl_arb_em_free(t->aem);
     free(t->tsplit);
     if (t->ra)
         _arb_vec_clear(t->ra, t->nregs);
     if (t->ta)
         _arb_vec_clear(t->ta, (slong)t->tacap);
-    for (int i = 0; i < 4; i++)
-        arb_clear(t->tmp[i]);
     free(t);
 }
 
