@@ -14,6 +14,8 @@
 #include <string.h>
 
 #include "base/buf.h"
+#include "base/memo.h"
+#include "tape/arb_em_impl.h"
 #include "tape/prog_impl.h"
 
 typedef struct slot {
@@ -77,8 +79,9 @@ static void map_put(map *m, uintptr_t k1, long k2, int reg)
 
 typedef struct comp {
     hl_tape *t;
-    map nodes; /* hl_expr* -> index into vreg / vscale */
-    map ins;   /* (op, a, b) -> destination register */
+    hl_memo exprs; /* hl_expr* -> index into vreg / vscale (the library's memo) */
+    map leaves;    /* a rational's hash -> index into t->leaf */
+    map ins;       /* (op, a, b) -> destination register */
     int *leafof;   /* register -> index in t->leaf, or -1 */
     hl_instr *def; /* register -> the instruction that made it (op -1: none) */
     int *vreg;     /* compiled nodes: node i is vscale[i] * register vreg[i] */
@@ -177,7 +180,7 @@ static int rational_leaf(comp *c, const fmpq_t q)
     long h = fmpq_hash(q);
     int i;
     for (;; h++) {
-        if ((i = map_get(&c->nodes, (uintptr_t)2, h)) < 0)
+        if ((i = map_get(&c->leaves, (uintptr_t)2, h)) < 0)
             break;
         if (fmpq_equal(t->leaf[i].q, q))
             return t->leaf[i].reg;
@@ -186,7 +189,7 @@ static int rational_leaf(comp *c, const fmpq_t q)
         c->capleaf = c->capleaf ? 2 * c->capleaf : 16;
         t->leaf = hl_xrealloc(t->leaf, (size_t)c->capleaf * sizeof *t->leaf);
     }
-    map_put(&c->nodes, (uintptr_t)2, h, t->nleaf);
+    map_put(&c->leaves, (uintptr_t)2, h, t->nleaf);
     hl_leaf *l = &t->leaf[t->nleaf++];
     l->reg = new_reg(c, 1);
     c->leafof[l->reg] = (int)(l - t->leaf);
@@ -491,11 +494,11 @@ static int compile_node(comp *c, const hl_expr *e, int *reg, fmpq_t s);
 
 static int compiled(comp *c, const hl_expr *e, int *reg, fmpq_t s)
 {
-    int v = map_get(&c->nodes, (uintptr_t)e, 0);
-    if (v < 0)
+    const hl_memo_val *v = hl_memo_get(&c->exprs, e);
+    if (v == NULL)
         return 0;
-    *reg = c->vreg[v];
-    fmpq_set(s, c->vscale + v);
+    *reg = c->vreg[v->i];
+    fmpq_set(s, c->vscale + v->i);
     return 1;
 }
 
@@ -598,7 +601,7 @@ static int compile_node(comp *c, const hl_expr *e, int *reg, fmpq_t s)
     c->vreg[c->nval] = r;
     fmpq_init(c->vscale + c->nval);
     fmpq_set(c->vscale + c->nval, s);
-    map_put(&c->nodes, (uintptr_t)e, 0, c->nval++);
+    hl_memo_put(&c->exprs, e)->i = c->nval++;
     *reg = r;
     return HL_OK;
 }
@@ -663,7 +666,8 @@ hl_status hl_tape_new(hl_tape **out, const hl_expr *const *outs, int nout,
     c.t = t;
     c.inputs = inputs;
     c.err = err;
-    map_init(&c.nodes);
+    hl_memo_init(&c.exprs);
+    map_init(&c.leaves);
     map_init(&c.ins);
     t->nin = nin;
     t->nout = nout;
@@ -679,10 +683,9 @@ hl_status hl_tape_new(hl_tape **out, const hl_expr *const *outs, int nout,
     free(c.vscale);
     free(c.leafof);
     free(c.def);
-    free(c.nodes.s);
+    hl_memo_clear(&c.exprs);
+    free(c.leaves.s);
     free(c.ins.s);
-    for (int i = 0; i < 4; i++)
-        arb_init(t->tmp[i]);
     if (status == HL_OK) {
         prune(t);
         t->rd = hl_xcalloc((size_t)t->nregs + 1, sizeof *t->rd);
@@ -713,13 +716,12 @@ void hl_tape_free(hl_tape *t)
     free(t->td);
     hl_prog_free(t->tprog);
     hl_prog_free(t->pprog);
+    hl_arb_em_free(t->aem);
     free(t->tsplit);
     if (t->ra)
         _arb_vec_clear(t->ra, t->nregs);
     if (t->ta)
         _arb_vec_clear(t->ta, (slong)t->tacap);
-    for (int i = 0; i < 4; i++)
-        arb_clear(t->tmp[i]);
     free(t);
 }
 

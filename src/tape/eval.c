@@ -8,39 +8,14 @@
 #include <math.h>
 #include <string.h>
 
+#include "tape/arb_em_impl.h"
 #include "tape/prog_impl.h"
 
 void hl_tape_run_arb(const hl_instr *code, int n, arb_ptr r, slong prec)
 {
-    for (const hl_instr *i = code, *end = code + n; i < end; i++) {
-        arb_ptr d = r + i->d, a = r + i->a, b = i->b >= 0 ? r + i->b : NULL;
-        switch (i->op) {
-        case HL_OP_NEG: arb_neg(d, a); break;
-        case HL_OP_ADD:
-        case HL_OP_ADDK: arb_add(d, a, b, prec); break;
-        case HL_OP_SUB:
-        case HL_OP_SUBK: arb_sub(d, a, b, prec); break;
-        case HL_OP_KSUB: arb_sub(d, b, a, prec); break;
-        case HL_OP_MUL:
-        case HL_OP_MULK: arb_mul(d, a, b, prec); break;
-        case HL_OP_DIV:
-        case HL_OP_DIVK: arb_div(d, a, b, prec); break;
-        case HL_OP_KDIV: arb_div(d, b, a, prec); break;
-        case HL_OP_SQR: arb_sqr(d, a, prec); break;
-        case HL_OP_POWK: arb_pow(d, a, b, prec); break;
-        case HL_OP_SQRT: arb_sqrt(d, a, prec); break;
-        case HL_OP_EXP: arb_exp(d, a, prec); break;
-        case HL_OP_LOG: arb_log(d, a, prec); break;
-        case HL_OP_SINCOS: arb_sin_cos(d, r + i->x, a, prec); break;
-        case HL_OP_SINHCOSH: arb_sinh_cosh(d, r + i->x, a, prec); break;
-        case HL_OP_TAN: arb_tan(d, a, prec); break;
-        case HL_OP_TANH: arb_tanh(d, a, prec); break;
-        case HL_OP_ATAN: arb_atan(d, a, prec); break;
-        case HL_OP_ASIN: arb_asin(d, a, prec); break;
-        case HL_OP_ACOS: arb_acos(d, a, prec); break;
-        case HL_OP_ATAN2: arb_atan2(d, a, b, prec); break; /* arb_atan2(r, y, x) */
-        }
-    }
+    hl_arb_em *a = hl_arb_em_new(n);
+    hl_arb_em_point(a, code, n, r, prec);
+    hl_arb_em_free(a);
 }
 
 /* The constant registers of r at prec bits: leaves, then the prologue. */

@@ -591,7 +591,8 @@ static double call(int f, double a, double b)
 #define T_SYM(j) (2 * x[j] * x[k - (j)])
 
 /* the lanes added, then the middle and fresh terms (n known terms so far) */
-static inline double conv_tail(const mconv *m, double l0, double l1, double l2, double l3)
+static inline __attribute__((always_inline)) double conv_tail(const mconv *m, double l0, double l1,
+                                                              double l2, double l3)
 {
     int n = m->jh - m->jl + 1;
     if (n < 0)

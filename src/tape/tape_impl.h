@@ -55,7 +55,7 @@ struct hl_tape {
     int tas;
     slong ta_prec;
     size_t tacap;
-    arb_t tmp[4];           /* scratch for the Arb recurrences */
+    struct hl_arb_em *aem; /* the Arb emitter of the body (arb_em_impl.h) */
 };
 
 /* newton.c: hl_newton */
