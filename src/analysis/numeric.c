@@ -55,6 +55,7 @@
 #include "base/memo.h"
 #include "hamlie/numerr.h"
 #include "hamlie/tape.h"
+#include "rules/rule.h"
 
 #define SLACK 3
 #define NUM_MAX_NEST 4 /* integrals inside integrals: not in the language */
@@ -303,19 +304,6 @@ static int check_domain(ev *E, hl_fun f, dn a0, dn b0)
     }
 }
 
-/* The operation of f; cos and cosh are their pair's second series. */
-static hl_op op_of_fun(hl_fun f, int *second)
-{
-    static const hl_op op[HL_FUN_COUNT] = {
-        [HL_SIN] = HL_OP_SINCOS,    [HL_COS] = HL_OP_SINCOS, [HL_SINH] = HL_OP_SINHCOSH,
-        [HL_COSH] = HL_OP_SINHCOSH, [HL_TAN] = HL_OP_TAN,    [HL_TANH] = HL_OP_TANH,
-        [HL_EXP] = HL_OP_EXP,       [HL_LOG] = HL_OP_LOG,    [HL_SQRT] = HL_OP_SQRT,
-        [HL_ATAN] = HL_OP_ATAN,     [HL_ASIN] = HL_OP_ASIN,  [HL_ACOS] = HL_OP_ACOS,
-        [HL_ATAN2] = HL_OP_ATAN2,
-    };
-    *second = f == HL_COS || f == HL_COSH;
-    return op[f];
-}
 
 /* x = f(a, b) (b: atan2's x, else NULL) */
 static int eval_fun(ev *E, dn *x, hl_fun f, const dn *a, const dn *b)
@@ -326,7 +314,7 @@ static int eval_fun(ev *E, dn *x, hl_fun f, const dn *a, const dn *b)
     if ((st = check_domain(E, f, a[0], b ? b[0] : a[0])) != HL_OK)
         return st;
     dn *t = hl_xmalloc((size_t)L * sizeof *t);
-    hl_op op = op_of_fun(f, &second);
+    hl_op op = hl_fun_op(f, &second);
     if (second)
         dual_series_op(op, L, t, x, a, b, 0);
     else

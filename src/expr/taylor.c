@@ -134,14 +134,6 @@ static hl_ev em_fma(hl_em *em, hl_ev a, hl_ev b, hl_ev c)
     return em_add(em, em_mul(em, a, b), c);
 }
 
-static const hl_fun fun_of_pfn[HL_PFN_COUNT] = {
-    [HL_PFN_SIN] = HL_SIN,     [HL_PFN_COS] = HL_COS,   [HL_PFN_TAN] = HL_TAN,
-    [HL_PFN_SINH] = HL_SINH,   [HL_PFN_COSH] = HL_COSH, [HL_PFN_TANH] = HL_TANH,
-    [HL_PFN_EXP] = HL_EXP,     [HL_PFN_LOG] = HL_LOG,   [HL_PFN_SQRT] = HL_SQRT,
-    [HL_PFN_ATAN] = HL_ATAN,   [HL_PFN_ASIN] = HL_ASIN, [HL_PFN_ACOS] = HL_ACOS,
-    [HL_PFN_ATAN2] = HL_ATAN2,
-};
-
 /* a^c at order 0 in the node's own form, so that it is the node of the
  * same power written elsewhere (Gonzalez's remainder cancels its term of
  * order 0 exactly) */
@@ -152,7 +144,7 @@ static hl_ev em_call(hl_em *em, hl_pfn f, hl_ev a, hl_ev b)
         return ev_of(hl_fold_pow(pool, ex(a), ex(b)));
     if (f == HL_PFN_ATAN2)
         return ev_of(hl_call2(pool, HL_ATAN2, ex(a), ex(b)));
-    return ev_of(hl_call(pool, fun_of_pfn[f], ex(a)));
+    return ev_of(hl_call(pool, hl_pfn_fun(f), ex(a)));
 }
 
 /* term j of a convolution (rules/rule.h: where the weight goes) */
@@ -347,16 +339,6 @@ static void sincos_series(taylor_walk *w, const hl_expr **s, const hl_expr **c,
 
 static const hl_expr *const *series_of(taylor_walk *w, const hl_expr *e);
 
-/* The operation of a function other than sin, cos, sinh, cosh and exp. */
-static hl_op op_of_fun(hl_fun f)
-{
-    static const hl_op op[HL_FUN_COUNT] = {
-        [HL_TAN] = HL_OP_TAN,   [HL_TANH] = HL_OP_TANH,   [HL_LOG] = HL_OP_LOG,
-        [HL_SQRT] = HL_OP_SQRT, [HL_ATAN] = HL_OP_ATAN,   [HL_ASIN] = HL_OP_ASIN,
-        [HL_ACOS] = HL_OP_ACOS, [HL_ATAN2] = HL_OP_ATAN2,
-    };
-    return op[f];
-}
 
 static void fun_series(taylor_walk *w, const hl_expr **r, const hl_expr *e, const hl_expr *const *a,
                        const hl_expr *const *b)
@@ -376,7 +358,7 @@ static void fun_series(taylor_walk *w, const hl_expr **r, const hl_expr *e, cons
     } else if (e->fun == HL_EXP) {
         exp_series(w, r, a);
     } else {
-        run_rule(w, op_of_fun(e->fun), r, NULL, a, b);
+        run_rule(w, hl_fun_op(e->fun, NULL), r, NULL, a, b);
     }
 }
 

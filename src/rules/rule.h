@@ -122,6 +122,18 @@ typedef struct hl_rule {
     void (*taylor)(hl_em *em, int k);
 } hl_rule;
 
+/* The point functions (funcs.c, one table): libm's name, the language's
+ * function (HL_FUN_COUNT for pow), the number of arguments, the value in
+ * double. */
+const char *hl_pfn_name(hl_pfn f);
+hl_fun hl_pfn_fun(hl_pfn f);
+int hl_pfn_arity(hl_pfn f);
+double hl_pfn_eval(hl_pfn f, double a, double b);
+
+/* The operation that computes the language's function f; *second (if not
+ * NULL) = 1 when f's value is the op's second result X (cos, cosh). */
+hl_op hl_fun_op(hl_fun f, int *second);
+
 /* The rule of op (rules.c: the table, one entry per hl_op). */
 const hl_rule *hl_rule_of(hl_op op);
 

@@ -204,14 +204,6 @@ static hl_ev em_fma(hl_em *em, hl_ev a, hl_ev b, hl_ev c)
     return em_add(em, em_mul(em, a, b), c);
 }
 
-static const hl_fun fun_of[HL_PFN_COUNT] = {
-    [HL_PFN_SIN] = HL_SIN,     [HL_PFN_COS] = HL_COS,   [HL_PFN_TAN] = HL_TAN,
-    [HL_PFN_SINH] = HL_SINH,   [HL_PFN_COSH] = HL_COSH, [HL_PFN_TANH] = HL_TANH,
-    [HL_PFN_EXP] = HL_EXP,     [HL_PFN_LOG] = HL_LOG,   [HL_PFN_SQRT] = HL_SQRT,
-    [HL_PFN_ATAN] = HL_ATAN,   [HL_PFN_ASIN] = HL_ASIN, [HL_PFN_ACOS] = HL_ACOS,
-    [HL_PFN_ATAN2] = HL_ATAN2,
-};
-
 static hl_ev em_call(hl_em *em, hl_pfn f, hl_ev a, hl_ev b)
 {
     series_em *E = em_of(em);
@@ -224,7 +216,7 @@ static hl_ev em_call(hl_em *em, hl_pfn f, hl_ev a, hl_ev b)
     else if (f == HL_PFN_ATAN2)
         status = hl_alg_apply2(&r->a, HL_ATAN2, alg(E, x), alg(E, y), E->ctx, E->err);
     else
-        status = hl_alg_apply(&r->a, fun_of[f], alg(E, x), E->ctx, E->err);
+        status = hl_alg_apply(&r->a, hl_pfn_fun(f), alg(E, x), E->ctx, E->err);
     failed(E, status);
     return as_ev(r);
 }

@@ -213,25 +213,11 @@ static int powq_node(series_prog *p, int a, const fmpq_t e, hl_alg_ctx *ctx)
     return i;
 }
 
-/* The operation of f (of one argument, or atan2); cos and cosh are the
- * second result of their pair's rule. */
-static hl_op op_of_fun(hl_fun f, int *second)
-{
-    static const hl_op op[HL_FUN_COUNT] = {
-        [HL_SIN] = HL_OP_SINCOS,    [HL_COS] = HL_OP_SINCOS, [HL_SINH] = HL_OP_SINHCOSH,
-        [HL_COSH] = HL_OP_SINHCOSH, [HL_TAN] = HL_OP_TAN,    [HL_TANH] = HL_OP_TANH,
-        [HL_EXP] = HL_OP_EXP,       [HL_LOG] = HL_OP_LOG,    [HL_SQRT] = HL_OP_SQRT,
-        [HL_ATAN] = HL_OP_ATAN,     [HL_ASIN] = HL_OP_ASIN,  [HL_ACOS] = HL_OP_ACOS,
-        [HL_ATAN2] = HL_OP_ATAN2,
-    };
-    *second = f == HL_COS || f == HL_COSH;
-    return op[f];
-}
 
 static int fun_node(series_prog *p, hl_fun f, int a, int b, hl_alg_ctx *ctx)
 {
     int second;
-    int i = op_node(p, op_of_fun(f, &second), a, b, ctx);
+    int i = op_node(p, hl_fun_op(f, &second), a, b, ctx);
     p->node[i].second = second;
     return i;
 }

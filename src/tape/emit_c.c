@@ -192,21 +192,14 @@ static hl_ev c_fma(hl_em *em, hl_ev a, hl_ev b, hl_ev c)
     return text(E, "fma(%s, %s, %s)", V(E, a)->s, V(E, b)->s, V(E, c)->s);
 }
 
-/* libm's names; pow is kept from the compiler's rewrites by -fno-builtin-pow */
-static const char *const libm_name[HL_PFN_COUNT] = {
-    [HL_PFN_SIN] = "sin",     [HL_PFN_COS] = "cos",   [HL_PFN_TAN] = "tan",
-    [HL_PFN_SINH] = "sinh",   [HL_PFN_COSH] = "cosh", [HL_PFN_TANH] = "tanh",
-    [HL_PFN_EXP] = "exp",     [HL_PFN_LOG] = "log",   [HL_PFN_SQRT] = "sqrt",
-    [HL_PFN_ATAN] = "atan",   [HL_PFN_ASIN] = "asin", [HL_PFN_ACOS] = "acos",
-    [HL_PFN_ATAN2] = "atan2", [HL_PFN_POW] = "pow",
-};
-
+/* libm's functions; pow is kept from the compiler's rewrites by
+ * -fno-builtin-pow */
 static hl_ev c_call(hl_em *em, hl_pfn f, hl_ev a, hl_ev b)
 {
     cem *E = CE(em);
-    if (f == HL_PFN_ATAN2 || f == HL_PFN_POW)
-        return text(E, "%s(%s, %s)", libm_name[f], V(E, a)->s, V(E, b)->s);
-    return text(E, "%s(%s)", libm_name[f], V(E, a)->s);
+    if (hl_pfn_arity(f) == 2)
+        return text(E, "%s(%s, %s)", hl_pfn_name(f), V(E, a)->s, V(E, b)->s);
+    return text(E, "%s(%s)", hl_pfn_name(f), V(E, a)->s);
 }
 
 /* kept values: locals declared at k = 0, named by instruction and slot */

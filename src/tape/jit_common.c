@@ -20,15 +20,6 @@
 
 #ifdef HAMLIE_HAVE_GCCJIT
 
-/* The libm functions the rules call (sqrt: GCC's builtin, set apart). */
-static const char *const libm_name[HL_PFN_COUNT] = {
-    [HL_PFN_SIN] = "sin",   [HL_PFN_COS] = "cos",   [HL_PFN_TAN] = "tan",
-    [HL_PFN_SINH] = "sinh", [HL_PFN_COSH] = "cosh", [HL_PFN_TANH] = "tanh",
-    [HL_PFN_EXP] = "exp",   [HL_PFN_LOG] = "log",   [HL_PFN_ATAN] = "atan",
-    [HL_PFN_ASIN] = "asin", [HL_PFN_ACOS] = "acos", [HL_PFN_ATAN2] = "atan2",
-    [HL_PFN_POW] = "pow",
-};
-
 gcc_jit_function *hl_jit_import1(jit *J, const char *name)
 {
     gcc_jit_param *x = gcc_jit_context_new_param(J->c, NULL, J->dbl, "x");
@@ -42,13 +33,13 @@ gcc_jit_function *hl_jit_import_lib(jit *J, hl_pfn f)
         return J->sqrt;
     if (J->lib[f] != NULL)
         return J->lib[f];
-    if (f == HL_PFN_POW || f == HL_PFN_ATAN2) { /* pow(x, y), atan2(y, x) */
+    if (hl_pfn_arity(f) == 2) { /* pow(x, y), atan2(y, x) */
         gcc_jit_param *p[2] = {gcc_jit_context_new_param(J->c, NULL, J->dbl, "u"),
                                gcc_jit_context_new_param(J->c, NULL, J->dbl, "v")};
         J->lib[f] = gcc_jit_context_new_function(J->c, NULL, GCC_JIT_FUNCTION_IMPORTED, J->dbl,
-                                                 libm_name[f], 2, p, 0);
+                                                 hl_pfn_name(f), 2, p, 0);
     } else
-        J->lib[f] = hl_jit_import1(J, libm_name[f]);
+        J->lib[f] = hl_jit_import1(J, hl_pfn_name(f));
     return J->lib[f];
 }
 

@@ -182,17 +182,10 @@ static hl_ev g_fma(hl_em *em, hl_ev a, hl_ev b, hl_ev c)
     return push(E, gcc_jit_context_new_call(E->c, NULL, f, 3, args), 0, 0);
 }
 
+
 /* libm's functions as opaque imports, so that GCC cannot rewrite them
  * (pow(x, 2) -> x*x is not exact for glibc's pow); sqrt is GCC's builtin
  * (sqrtsd, correctly rounded like libm's) */
-static const char *const libm_name[HL_PFN_COUNT] = {
-    [HL_PFN_SIN] = "sin",     [HL_PFN_COS] = "cos",   [HL_PFN_TAN] = "tan",
-    [HL_PFN_SINH] = "sinh",   [HL_PFN_COSH] = "cosh", [HL_PFN_TANH] = "tanh",
-    [HL_PFN_EXP] = "exp",     [HL_PFN_LOG] = "log",   [HL_PFN_SQRT] = "sqrt",
-    [HL_PFN_ATAN] = "atan",   [HL_PFN_ASIN] = "asin", [HL_PFN_ACOS] = "acos",
-    [HL_PFN_ATAN2] = "atan2", [HL_PFN_POW] = "pow",
-};
-
 static gcc_jit_function *lib(gem *E, hl_pfn f)
 {
     if (E->lib[f] != NULL)
@@ -200,11 +193,11 @@ static gcc_jit_function *lib(gem *E, hl_pfn f)
     if (f == HL_PFN_SQRT) {
         E->lib[f] = gcc_jit_context_get_builtin_function(E->c, "__builtin_sqrt");
     } else {
-        int two = f == HL_PFN_ATAN2 || f == HL_PFN_POW;
+        int two = hl_pfn_arity(f) == 2;
         gcc_jit_param *p[2] = {gcc_jit_context_new_param(E->c, NULL, E->dbl, "u"),
                                gcc_jit_context_new_param(E->c, NULL, E->dbl, "v")};
         E->lib[f] = gcc_jit_context_new_function(E->c, NULL, GCC_JIT_FUNCTION_IMPORTED, E->dbl,
-                                                 libm_name[f], two ? 2 : 1, p, 0);
+                                                 hl_pfn_name(f), two ? 2 : 1, p, 0);
     }
     return E->lib[f];
 }

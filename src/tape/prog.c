@@ -526,39 +526,6 @@ void hl_prog_free(hl_prog *p)
 
 /* ---- running ---------------------------------------------------------------- */
 
-static double call(int f, double a, double b)
-{
-    switch (f) {
-    case HL_PFN_SIN:
-        return sin(a);
-    case HL_PFN_COS:
-        return cos(a);
-    case HL_PFN_TAN:
-        return tan(a);
-    case HL_PFN_SINH:
-        return sinh(a);
-    case HL_PFN_COSH:
-        return cosh(a);
-    case HL_PFN_TANH:
-        return tanh(a);
-    case HL_PFN_EXP:
-        return exp(a);
-    case HL_PFN_LOG:
-        return log(a);
-    case HL_PFN_SQRT:
-        return sqrt(a);
-    case HL_PFN_ATAN:
-        return atan(a);
-    case HL_PFN_ASIN:
-        return asin(a);
-    case HL_PFN_ACOS:
-        return acos(a);
-    case HL_PFN_ATAN2:
-        return atan2(a, b);
-    default:
-        return pow(a, b);
-    }
-}
 
 /* The known terms j = jl..jh into lanes l0..l3 by position, each lane
  * starting with its first term (0 + t would turn a -0 into +0). */
@@ -740,7 +707,7 @@ fma_:
     *o->d = fma(*o->a, *o->b, *o->c);
     NEXT();
 call_:
-    *o->d = call(o->arg, *o->a, *o->b);
+    *o->d = hl_pfn_eval(o->arg, *o->a, *o->b);
     NEXT();
 sincos_:
     sincos(*o->a, o->d, (double *)o->c);

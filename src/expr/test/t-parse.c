@@ -139,9 +139,9 @@ static void check_bad(void)
         hl_pool *pool = hl_pool_new();
         hl_error err;
         const hl_expr *e = (const hl_expr *)&err;
-        int st = hl_parse(&e, pool, bad[i].src, &err);
-        CHECK_MSG(st == bad[i].status && (int)err.status == st, "\"%s\": status %d, want %d (%s)",
-                  bad[i].src, st, bad[i].status, err.msg);
+        hl_status st = hl_parse(&e, pool, bad[i].src, &err);
+        CHECK_MSG(st == bad[i].status && err.status == st, "\"%s\": status %d, want %d (%s)",
+                  bad[i].src, (int)st, (int)bad[i].status, err.msg);
         CHECK_MSG(err.pos == bad[i].pos, "\"%s\": pos %d, want %d (%s)", bad[i].src, err.pos,
                   bad[i].pos, err.msg);
         CHECK_STR(err.msg, bad[i].msg);
