@@ -51,6 +51,7 @@ typedef enum hl_fun {
     HL_SIN, HL_COS, HL_TAN, HL_EXP, HL_LOG, HL_SQRT,
     HL_ATAN, HL_ASIN, HL_ACOS, HL_SINH, HL_COSH, HL_TANH,
     HL_ATAN2, /* atan2(y, x), two arguments: a = y, b = x (libm's order) */
+    HL_ASINH,
     HL_FUN_COUNT
 } hl_fun;
 

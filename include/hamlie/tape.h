@@ -87,6 +87,7 @@ typedef enum hl_op {
     HL_OP_ASIN, /* d a x    asin a; x=sqrt(1-a^2)  x by the SQRT rule on 1-(a*a);
                                             d[k] as ATAN with this x               */
     HL_OP_ACOS, /* d a x    acos a; x=sqrt(1-a^2)  d[k] = -(k a[k] + sum_{j=1..k-1} (k-j) x[j] d[k-j]) / (k x[0]) */
+    HL_OP_ASINH, /* d a x   asinh a; x=sqrt(1+a^2)  x by the SQRT rule on 1+(a*a); d[k] as ASIN */
     HL_OP_ATAN2, /* d a b x atan2(a, b); x=a^2+b^2  x[k] = (a*a)[k] + (b*b)[k];
                                             d[k] = (sum_{j=1..k} j (b[k-j] a[j] - a[k-j] b[j])
                                                     - sum_{j=1..k-1} (k-j) x[j] d[k-j]) / (k x[0]) */

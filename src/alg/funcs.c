@@ -426,6 +426,26 @@ static int outside_unit(const hl_alg *a, const hl_alg_ctx *ctx)
     return out;
 }
 
+/* asinh u = log(u + sqrt(u^2 + 1)) for every real u: the algebra keeps no
+ * atom of its own for asinh, so its relations to log and sqrt come free. */
+static int alg_asinh(hl_alg *r, const hl_alg *a, hl_alg_ctx *ctx, hl_error *err)
+{
+    hl_alg w, one;
+    hl_alg_init(&w, ctx);
+    hl_alg_init(&one, ctx);
+    hl_alg_one(&one, ctx);
+    hl_alg_mul(&w, a, a, ctx);
+    hl_alg_add(&w, &w, &one, ctx);
+    int status = alg_sqrt(&w, &w, ctx, err);
+    if (status == HL_OK) {
+        hl_alg_add(&w, &w, a, ctx);
+        status = alg_log(r, &w, ctx, err);
+    }
+    hl_alg_clear(&w, ctx);
+    hl_alg_clear(&one, ctx);
+    return status;
+}
+
 hl_status hl_alg_apply(hl_alg *r, hl_fun f, const hl_alg *a, hl_alg_ctx *ctx, hl_error *err)
 {
     hl_alg s, c;
@@ -469,6 +489,7 @@ hl_status hl_alg_apply(hl_alg *r, hl_fun f, const hl_alg *a, hl_alg_ctx *ctx, hl
     case HL_SINH:
     case HL_COSH:
     case HL_TANH: return hyperbolic(r, f, a, ctx, err);
+    case HL_ASINH: return alg_asinh(r, a, ctx, err);
     case HL_ATAN2: return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "'atan2' takes two arguments");
     default: return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "unknown function");
     }

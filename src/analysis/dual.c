@@ -132,6 +132,9 @@ static double point(hl_pfn f, double x, double *df)
     case HL_PFN_ACOS:
         *df = -1 / sqrt(1 - x * x);
         return acos(x);
+    case HL_PFN_ASINH:
+        *df = 1 / sqrt(1 + x * x);
+        return asinh(x);
     default:
         *df = NAN;
         return NAN; /* two arguments: em_call */

@@ -17,7 +17,7 @@
     "  -h, --help         show this help\n"                                      \
     "\n"                                                                       \
     "Formulas use + - * / ^ (or **), sin cos tan exp log sqrt atan asin acos\n" \
-    "sinh cosh tanh, atan2(y, x) (the angle of (x, y), in (-pi, pi]), pi;\n"   \
+    "sinh cosh tanh asinh, atan2(y, x) (the angle of (x, y), in (-pi, pi]), pi;\n" \
     "D is the step (--step renames it), H names the Hamiltonian.\n"
 
 static const cli_command commands[] = {

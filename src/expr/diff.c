@@ -36,6 +36,9 @@ static const hl_expr *fun_deriv(hl_pool *pool, hl_fun f, const hl_expr *e, const
     case HL_SINH: return hl_call(pool, HL_COSH, u);
     case HL_COSH: return hl_call(pool, HL_SINH, u);
     case HL_TANH: return hl_sub(pool, one, hl_pow(pool, e, two)); /* 1 - tanh(u)^2 */
+    case HL_ASINH:
+        return hl_fold_div(pool, one,
+                           hl_call(pool, HL_SQRT, hl_add(pool, one, hl_pow(pool, u, two))));
     default: return hl_num_si(pool, 0); /* unreachable: every hl_fun is listed */
     }
 }

@@ -31,7 +31,7 @@ struct hl_pool {
 
 static const char *const fun_names[HL_FUN_COUNT] = {
     "sin", "cos", "tan", "exp", "log", "sqrt",
-    "atan", "asin", "acos", "sinh", "cosh", "tanh", "atan2",
+    "atan", "asin", "acos", "sinh", "cosh", "tanh", "atan2", "asinh",
 };
 
 const char *hl_fun_name(hl_fun f)

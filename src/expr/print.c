@@ -370,6 +370,7 @@ static const char *const latex_fun[HL_FUN_COUNT] = {
     [HL_LOG] = "\\log", [HL_SQRT] = "\\sqrt", [HL_ATAN] = "\\arctan",
     [HL_ASIN] = "\\arcsin", [HL_ACOS] = "\\arccos", [HL_SINH] = "\\sinh",
     [HL_COSH] = "\\cosh", [HL_TANH] = "\\tanh", [HL_ATAN2] = "\\operatorname{atan2}",
+    [HL_ASINH] = "\\operatorname{arsinh}",
 };
 
 static int latex_atom(const hl_expr *e) /* needs no parentheses under ^ */

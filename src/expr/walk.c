@@ -246,6 +246,7 @@ static double apply_fun(hl_fun f, double x)
     case HL_ATAN: return atan(x);
     case HL_ASIN: return asin(x);
     case HL_ACOS: return acos(x);
+    case HL_ASINH: return asinh(x);
     case HL_SINH: return sinh(x);
     case HL_COSH: return cosh(x);
     case HL_TANH: return tanh(x);

@@ -19,7 +19,7 @@ static const pfn_row pfn[HL_PFN_COUNT] = {
     [HL_PFN_EXP] = {"exp", HL_EXP, 1},       [HL_PFN_LOG] = {"log", HL_LOG, 1},
     [HL_PFN_SQRT] = {"sqrt", HL_SQRT, 1},    [HL_PFN_ATAN] = {"atan", HL_ATAN, 1},
     [HL_PFN_ASIN] = {"asin", HL_ASIN, 1},    [HL_PFN_ACOS] = {"acos", HL_ACOS, 1},
-    [HL_PFN_ATAN2] = {"atan2", HL_ATAN2, 2}, [HL_PFN_POW] = {"pow", HL_FUN_COUNT, 2},
+    [HL_PFN_ASINH] = {"asinh", HL_ASINH, 1}, [HL_PFN_ATAN2] = {"atan2", HL_ATAN2, 2}, [HL_PFN_POW] = {"pow", HL_FUN_COUNT, 2},
 };
 
 /* by function: the op, and whether the value is its second result */
@@ -33,7 +33,7 @@ static const struct {
     [HL_EXP] = {HL_OP_EXP, 0},       [HL_LOG] = {HL_OP_LOG, 0},
     [HL_SQRT] = {HL_OP_SQRT, 0},     [HL_ATAN] = {HL_OP_ATAN, 0},
     [HL_ASIN] = {HL_OP_ASIN, 0},     [HL_ACOS] = {HL_OP_ACOS, 0},
-    [HL_ATAN2] = {HL_OP_ATAN2, 0},
+    [HL_ASINH] = {HL_OP_ASINH, 0},   [HL_ATAN2] = {HL_OP_ATAN2, 0},
 };
 
 const char *hl_pfn_name(hl_pfn f) { return pfn[f].name; }
@@ -62,6 +62,7 @@ double hl_pfn_eval(hl_pfn f, double a, double b)
     case HL_PFN_ATAN: return atan(a);
     case HL_PFN_ASIN: return asin(a);
     case HL_PFN_ACOS: return acos(a);
+    case HL_PFN_ASINH: return asinh(a);
     case HL_PFN_ATAN2: return atan2(a, b);
     case HL_PFN_POW:
     case HL_PFN_COUNT: break;

@@ -65,6 +65,7 @@ typedef enum hl_slot {
 typedef enum hl_pfn {
     HL_PFN_SIN, HL_PFN_COS, HL_PFN_TAN, HL_PFN_SINH, HL_PFN_COSH, HL_PFN_TANH,
     HL_PFN_EXP, HL_PFN_LOG, HL_PFN_SQRT, HL_PFN_ATAN, HL_PFN_ASIN, HL_PFN_ACOS,
+    HL_PFN_ASINH,
     HL_PFN_ATAN2, /* two arguments (y, x) */
     HL_PFN_POW,   /* two arguments (base, exponent) */
     HL_PFN_COUNT

@@ -76,6 +76,7 @@ extern const hl_rule hl_rule_sincos, hl_rule_sinhcosh; /* sincos.c */
 extern const hl_rule hl_rule_tan, hl_rule_tanh;  /* tan.c */
 extern const hl_rule hl_rule_atan;               /* atan.c */
 extern const hl_rule hl_rule_asin, hl_rule_acos; /* asin.c */
+extern const hl_rule hl_rule_asinh;              /* asinh.c */
 extern const hl_rule hl_rule_atan2;              /* atan2.c */
 
 #endif /* HAMLIE_RULES_IMPL_H */

@@ -139,6 +139,9 @@ static void apply(arb_ptr t, hl_pfn f, arb_srcptr x, arb_srcptr y, slong prec)
     case HL_PFN_ACOS:
         arb_acos(t, x, prec);
         break;
+    case HL_PFN_ASINH:
+        arb_asinh(t, x, prec);
+        break;
     case HL_PFN_ATAN2:
         arb_atan2(t, x, y, prec);
         break; /* arb_atan2(r, y, x) */

@@ -15,6 +15,7 @@
 
 #include "base/buf.h"
 #include "base/memo.h"
+#include "rules/rule.h"
 #include "tape/arb_em_impl.h"
 #include "tape/prog_impl.h"
 
@@ -110,7 +111,7 @@ static int new_reg(comp *c, int isconst)
 
 static int has_aux(int op)
 {
-    return (op >= HL_OP_SINCOS && op <= HL_OP_ACOS) || op == HL_OP_ATAN2;
+    return op >= HL_OP_SINCOS && op <= HL_OP_ATAN2; /* the ops with an X */
 }
 
 /* Emit op(a, b) (b = -1 if unary) unless an identical instruction exists;
@@ -388,23 +389,14 @@ static int compile_pow(comp *c, const hl_expr *e, int *reg, fmpq_t s)
     return HL_OK;
 }
 
+/* f(a) by the op of the rules' table; cos and cosh are their pair's second
+ * result, its aux register d + 1 */
 static int compile_fun(comp *c, hl_fun f, int a)
 {
-    switch (f) {
-    case HL_SIN: return emit(c, HL_OP_SINCOS, a, -1);
-    case HL_COS: return emit(c, HL_OP_SINCOS, a, -1) + 1;
-    case HL_SINH: return emit(c, HL_OP_SINHCOSH, a, -1);
-    case HL_COSH: return emit(c, HL_OP_SINHCOSH, a, -1) + 1;
-    case HL_TAN: return emit(c, HL_OP_TAN, a, -1);
-    case HL_TANH: return emit(c, HL_OP_TANH, a, -1);
-    case HL_ATAN: return emit(c, HL_OP_ATAN, a, -1);
-    case HL_ASIN: return emit(c, HL_OP_ASIN, a, -1);
-    case HL_ACOS: return emit(c, HL_OP_ACOS, a, -1);
-    case HL_EXP: return emit(c, HL_OP_EXP, a, -1);
-    case HL_LOG: return emit(c, HL_OP_LOG, a, -1);
-    case HL_SQRT: return emit(c, HL_OP_SQRT, a, -1);
-    default: return -1;
-    }
+    int second;
+    if (f == HL_ATAN2)
+        return -1;
+    return emit(c, hl_fun_op(f, &second), a, -1) + second;
 }
 
 /* s = sa*a (+ or -) sb*b as (register, scale) */

@@ -102,6 +102,8 @@ static double ref_libm(hl_pfn f, double x, double y)
         return asin(x);
     case HL_PFN_ACOS:
         return acos(x);
+    case HL_PFN_ASINH:
+        return asinh(x);
     case HL_PFN_ATAN2:
         return atan2(x, y);
     case HL_PFN_POW:

@@ -128,6 +128,9 @@ static void test_inverse_trig(void)
         check_close("atan(tan a)", pts[i], op1(HL_OP_ATAN, op1(HL_OP_TAN, a)), a, TOL);
         ser aa = op2(HL_OP_ADDK, op1(HL_OP_SQR, a), konst(1));
         check_close("atan's aux = 1 + a^2", pts[i], aux1(HL_OP_ATAN, a), aa, TOL);
+        check_close("asinh(sinh a)", pts[i], op1(HL_OP_ASINH, op1(HL_OP_SINHCOSH, a)), a, TOL);
+        check_close("asinh's aux = sqrt(1 + a^2)", pts[i], aux1(HL_OP_ASINH, a),
+                    op1(HL_OP_SQRT, aa), TOL);
         if (fabs(pts[i]) >= 1.2)
             continue;
         check_close("asin(sin a)", pts[i], op1(HL_OP_ASIN, op1(HL_OP_SINCOS, a)), a, TOL);
@@ -256,7 +259,8 @@ static void test_points(void)
         {HL_OP_SQRT, sqrt(0.3)},      {HL_OP_EXP, exp(0.3)},    {HL_OP_LOG, log(0.3)},
         {HL_OP_SINCOS, sin(0.3)},     {HL_OP_TAN, tan(0.3)},    {HL_OP_ATAN, atan(0.3)},
         {HL_OP_ASIN, asin(0.3)},      {HL_OP_ACOS, acos(0.3)},  {HL_OP_ATAN2, atan2(0.3, -0.8)},
-        {HL_OP_POWK, pow(0.3, -0.8)}, {HL_OP_KDIV, -0.8 / 0.3}, {HL_OP_DIV, 0.3 / -0.8}};
+        {HL_OP_POWK, pow(0.3, -0.8)}, {HL_OP_KDIV, -0.8 / 0.3}, {HL_OP_DIV, 0.3 / -0.8},
+        {HL_OP_ASINH, asinh(0.3)}};
     for (size_t i = 0; i < sizeof v / sizeof *v; i++) {
         double a = 0.3, b = -0.8, d, x;
         ref_point(v[i].op, &d, &x, &a, &b);

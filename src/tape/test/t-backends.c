@@ -177,6 +177,7 @@ static const struct {
     {HL_OP_LOG, "log(a)"},     {HL_OP_SINCOS, "sin(a)"}, {HL_OP_SINHCOSH, "sinh(a)"},
     {HL_OP_TAN, "tan(a)"},     {HL_OP_TANH, "tanh(a)"},  {HL_OP_ATAN, "atan(a)"},
     {HL_OP_ASIN, "asin(a)"},   {HL_OP_ACOS, "acos(a)"},  {HL_OP_ATAN2, "atan2(a,b)"},
+    {HL_OP_ASINH, "asinh(a)"},
     {HL_OP_POWK, "sqrt(a)*a"}, /* the fused w^(3/2) */
 };
 
