@@ -5,6 +5,7 @@
 #include "base/buf.h"
 #include "hamlie/ham.h"
 #include "hamlie/report.h"
+#include "hamlie/scheme.h"
 
 #define HAMLIE_VERSION "0.1.0"
 
@@ -198,5 +199,11 @@ int cmd_plot(int argc, char **argv, const cli_command *self); extern const char 
 int cmd_errors(int argc, char **argv, const cli_command *self); extern const char cmd_errors_help[];
 int cmd_reproduce(int argc, char **argv, const cli_command *self); extern const char cmd_reproduce_help[];
 int cmd_exact(int argc, char **argv, const cli_command *self); extern const char cmd_exact_help[];
+
+/* The scheme a command was given: --map, else --equations, else the
+ * catalog's name (with its parameter, e.g. lie's order); the error says
+ * which option it came from. */
+hl_status cli_make_scheme(hl_scheme **s, const char *map, const char *equations, const char *name,
+                          int param, hl_system *sys, hl_error *err);
 
 #endif

@@ -642,14 +642,8 @@ static int build(hl_run **run, hl_scheme **sch, hl_exact_flow **ex, hl_system *s
         !hl_scheme_linear_flow_applies(sys))
         st = build_exact(run, ex, sys, err);
     else if (!adaptive(r)) {
-        if (o->map != NULL) {
-            if ((st = hl_scheme_from_map(sch, o->map, sys, err)) != HL_OK)
-                hl_error_prefix(err, "in --map");
-        } else if (r->equations != NULL) {
-            if ((st = hl_scheme_from_equations(sch, r->equations, sys, err)) != HL_OK)
-                hl_error_prefix(err, "in --equations");
-        } else
-            st = hl_scheme_new(sch, r->scheme, o->have_order ? o->order : 4, sys, err);
+        st = cli_make_scheme(sch, o->map, r->equations, r->scheme, o->have_order ? o->order : 4,
+                             sys, err);
     }
     if (st == HL_OK && *run == NULL)
         st = hl_run_new(run, sys, *sch, err);

@@ -289,3 +289,18 @@ void cli_put_arb(hl_buf *b, const arb_struct *x, long ndig)
     hl_buf_puts(b, str);
     flint_free(str);
 }
+
+hl_status cli_make_scheme(hl_scheme **s, const char *map, const char *equations, const char *name,
+                          int param, hl_system *sys, hl_error *err)
+{
+    hl_status st;
+    if (map != NULL) {
+        if ((st = hl_scheme_from_map(s, map, sys, err)) != HL_OK)
+            hl_error_prefix(err, "in --map");
+    } else if (equations != NULL) {
+        if ((st = hl_scheme_from_equations(s, equations, sys, err)) != HL_OK)
+            hl_error_prefix(err, "in --equations");
+    } else
+        st = hl_scheme_new(s, name, param, sys, err);
+    return st;
+}

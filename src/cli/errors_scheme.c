@@ -16,15 +16,6 @@ const char *errors_input(const err_opts *r, const cli_opts *o)
 hl_status errors_make_scheme(hl_scheme **s, const err_opts *r, const cli_opts *o, hl_system *sys,
                              hl_error *err)
 {
-    int st;
-    if (o->map != NULL) {
-        if ((st = hl_scheme_from_map(s, o->map, sys, err)) != HL_OK)
-            hl_error_prefix(err, "in --map");
-    } else if (r->equations != NULL) {
-        if ((st = hl_scheme_from_equations(s, r->equations, sys, err)) != HL_OK)
-            hl_error_prefix(err, "in --equations");
-    } else
-        st = hl_scheme_new(s, r->scheme, 0, sys, err);
-    return st;
+    return cli_make_scheme(s, o->map, r->equations, r->scheme, 0, sys, err);
 }
 
