@@ -31,7 +31,10 @@ typedef enum mcode {
     M_FMA,
     M_CALL,
     M_SINCOS,
-    M_CONV,
+    M_CONV, /* while recording; a program runs M_CONV + the convolution's kind */
+    M_CONV_WEIGHTED,
+    M_CONV_INTW,
+    M_CONV_SYM,
     M_END
 } mcode;
 
@@ -51,12 +54,13 @@ typedef struct rop {
 } rop;
 
 /* How a convolution's terms read: x[j] y[k-j], (w x[j]) y[k-j], or a
- * square's pairs (2 x[j]) x[k-j]. */
+ * square's pairs (2 x[j]) x[k-j].  In the order of the M_CONV codes. */
 enum { CV_PLAIN, CV_WEIGHTED, CV_INTW, CV_SYM };
 
-/* A fresh term (rule.h): (w *p) *q, or *p *q when how is F_PLAIN; w is a
- * constant (F_CONST) or wa j + wb of the run (F_RUN). */
-enum { F_PLAIN, F_CONST, F_RUN };
+/* A fresh term (rule.h): (w *p) *q, w a constant (F_CONST) or wa j + wb
+ * of the run (F_RUN).  A plain term p q is a constant one with w = 1 (1 p
+ * is p exactly, so the bits agree and the loop has one branch less). */
+enum { F_CONST, F_RUN };
 typedef struct fresh {
     const double *p, *q;
     long lp, lq; /* while recording */
@@ -84,6 +88,7 @@ typedef struct mconv {
     post post[NPOST];
     long lx, ly, lwa, lwb; /* while recording */
     int kind, k, jl, jh, mid, nf;
+    int npair;       /* the known terms before the middle one: max(jh - jl + 1, 0) */
     long ia, ib;     /* CV_INTW: the weights wa, wb are these small integers, */
     const double *w; /* and w[j] = ia j + ib for j = jl..jh */
     long lw;         /* while recording: w's offset in the table of weights */
@@ -324,6 +329,7 @@ static void conv_shape(mconv *m, const hl_conv *c)
     m->jl = np > 0 ? idx[0] : 1;
     m->jh = np > 0 ? idx[np - 1] : 0;
     m->nf = nf;
+    m->npair = np > 0 ? np : 0;
     for (int i = 0; i < nf; i++)
         m->f[i].j = fr[i];
     free(idx);
@@ -372,8 +378,8 @@ static void conv_fresh(mconv *m, const hl_conv *c, long x, long y)
         int j = f->j, x_side = j == k && k > 0;
         f->lp = x_side ? y : x + 4L * j;
         f->lq = x_side ? x + 4L * k : y + 4L * (k - j);
-        f->how = c->weighted ? F_RUN : c->sym && 2 * j < k ? F_CONST : F_PLAIN;
-        f->w = 2;
+        f->how = c->weighted ? F_RUN : F_CONST;
+        f->w = c->sym && 2 * j < k ? 2 : 1;
         if (m->kind == CV_INTW) {
             f->how = F_CONST;
             f->w = (double)(m->ia * j + m->ib);
@@ -448,7 +454,8 @@ static hl_prog *finish(rec *r, double *reg, int ncode, int *start, int nk)
     p->op = hl_xmalloc(((size_t)r->nops + 1) * sizeof *p->op);
     for (int i = 0; i < r->nops; i++) {
         const rop *o = &r->ops[i];
-        p->op[i] = (mop){o->code, o->arg, at(&s, o->d), at(&s, o->a), at(&s, o->b), at(&s, o->c)};
+        int code = o->code == M_CONV ? M_CONV + r->cv[o->arg].kind : o->code;
+        p->op[i] = (mop){code, o->arg, at(&s, o->d), at(&s, o->a), at(&s, o->b), at(&s, o->c)};
     }
     p->cv = r->cv;
     p->wts = r->wts ? r->wts : hl_xmalloc(1);
@@ -590,13 +597,17 @@ static double call(int f, double a, double b)
 #define T_INTW(j) (w[j] * x[j] * y[k - (j)])
 #define T_SYM(j) (2 * x[j] * x[k - (j)])
 
-/* the lanes added, then the middle and fresh terms (n known terms so far) */
+static inline double fresh_term(const mconv *m, const fresh *f)
+{
+    double w = f->how == F_RUN ? *m->wa * (double)f->j + *m->wb : f->w;
+    return (w * *f->p) * *f->q;
+}
+
+/* the lanes added, then the middle and fresh terms */
 static inline __attribute__((always_inline)) double conv_tail(const mconv *m, double l0, double l1,
                                                               double l2, double l3)
 {
-    int n = m->jh - m->jl + 1;
-    if (n < 0)
-        n = 0;
+    int n = m->npair;
     if (m->mid) {
         double t = m->x[m->k / 2] * m->x[m->k / 2];
         switch (n % 4) {
@@ -616,17 +627,11 @@ static inline __attribute__((always_inline)) double conv_tail(const mconv *m, do
         n++;
     }
     double s = n >= 4 ? (l0 + l1) + (l2 + l3) : n == 3 ? (l0 + l1) + l2 : n == 2 ? l0 + l1 : l0;
-    for (int i = 0; i < m->nf; i++) {
-        const fresh *f = &m->f[i];
-        double p = *f->p, t;
-        if (f->how == F_PLAIN)
-            t = p * *f->q;
-        else if (f->how == F_CONST)
-            t = (f->w * p) * *f->q;
-        else
-            t = ((*m->wa * (double)f->j + *m->wb) * p) * *f->q;
-        s = n > 0 || i > 0 ? s + t : t;
-    }
+    int i = 0;
+    if (n == 0) /* a sum of one term is that term (0 + t would lose a -0) */
+        s = fresh_term(m, &m->f[i++]);
+    for (; i < m->nf; i++)
+        s += fresh_term(m, &m->f[i]);
     return s;
 }
 
@@ -667,23 +672,9 @@ static double conv_sym(const mconv *m)
     return conv_tail(m, l0, l1, l2, l3);
 }
 
-static double conv_run(const mconv *m)
+/* The operations recorded after the sum s, run in the same micro-op. */
+static inline __attribute__((always_inline)) void conv_post(const mconv *m, double s, double *d)
 {
-    switch (m->kind) {
-    case CV_PLAIN:
-        return conv_plain(m);
-    case CV_INTW:
-        return conv_intw(m);
-    case CV_WEIGHTED:
-        return conv_weighted(m);
-    default:
-        return conv_sym(m);
-    }
-}
-
-static inline void conv_post(const mconv *m, double *d)
-{
-    double s = conv_run(m);
     *d = s;
     for (int i = 0; i < m->npost; i++) {
         const post *p = &m->post[i];
@@ -710,8 +701,9 @@ static inline void conv_post(const mconv *m, double *d)
  * branch predictor learns each op's successor in the fixed sequence. */
 void hl_prog_run(const hl_prog *p, int k)
 {
-    static const void *const go[] = {&&mov,  &&neg,   &&add,     &&sub,  &&mul, &&div,
-                                     &&fma_, &&call_, &&sincos_, &&conv, &&end};
+    static const void *const go[] = {&&mov,    &&neg,     &&add,    &&sub,     &&mul,
+                                     &&div,    &&fma_,    &&call_,  &&sincos_, &&conv_,
+                                     &&conv_w, &&conv_iw, &&conv_s, &&end};
     const mconv *cv = p->cv;
     const mop *o = p->op + p->start[k], *stop = p->op + p->start[k + 1];
 #define NEXT() goto *go[++o < stop ? o->code : M_END]
@@ -745,8 +737,17 @@ call_:
 sincos_:
     sincos(*o->a, o->d, (double *)o->c);
     NEXT();
-conv:
-    conv_post(&cv[o->arg], o->d);
+conv_:
+    conv_post(&cv[o->arg], conv_plain(&cv[o->arg]), o->d);
+    NEXT();
+conv_w:
+    conv_post(&cv[o->arg], conv_weighted(&cv[o->arg]), o->d);
+    NEXT();
+conv_iw:
+    conv_post(&cv[o->arg], conv_intw(&cv[o->arg]), o->d);
+    NEXT();
+conv_s:
+    conv_post(&cv[o->arg], conv_sym(&cv[o->arg]), o->d);
     NEXT();
 end:
     return;
