@@ -35,6 +35,8 @@ typedef enum mcode {
     M_CONV_WEIGHTED,
     M_CONV_INTW,
     M_CONV_SYM,
+    M_CONV_PAIR,  /* an integer-weighted convolution and its partner's lanes */
+    M_CONV_LANES, /* a partner: its lanes are summed already */
     M_END
 } mcode;
 
@@ -88,7 +90,15 @@ typedef struct mconv {
     post post[NPOST];
     long lx, ly, lwa, lwb; /* while recording */
     int kind, k, jl, jh, mid, nf;
-    int npair;       /* the known terms before the middle one: max(jh - jl + 1, 0) */
+    int npair; /* the known terms before the middle one: max(jh - jl + 1, 0) */
+    /* Two convolutions of one rule call over the same x, weights and range
+     * (sin's and cos's, say) read w[j] x[j] once: the first one's loop sums
+     * the known terms of both, and leaves the second's lanes in its lane[]
+     * (the known terms read no coefficient k, which is all a rule call
+     * writes, so summing them early changes no bit).  partner: the second's
+     * index + 1 in the first, 0 otherwise; lanes_done in the second. */
+    int partner, lanes_done;
+    double lane[4];
     long ia, ib;     /* CV_INTW: the weights wa, wb are these small integers, */
     const double *w; /* and w[j] = ia j + ib for j = jl..jh */
     long lw;         /* while recording: w's offset in the table of weights */
@@ -387,6 +397,29 @@ static void conv_fresh(mconv *m, const hl_conv *c, long x, long y)
     }
 }
 
+static int same_known_terms(const mconv *a, const mconv *b)
+{
+    return a->kind == CV_INTW && b->kind == CV_INTW && a->lx == b->lx && a->ia == b->ia &&
+           a->ib == b->ib && a->k == b->k && a->jl == b->jl && a->jh == b->jh && !a->mid &&
+           !b->mid && a->npair > 0;
+}
+
+/* Make convolution i the partner of an earlier one of this rule call that
+ * shares its known terms' x and weights (see mconv). */
+static void pair_up(rec *r, int i)
+{
+    for (int o = r->first_op; o < r->nops; o++) {
+        if (r->ops[o].code != M_CONV)
+            continue;
+        mconv *first = &r->cv[r->ops[o].arg];
+        if (first->partner == 0 && !first->lanes_done && same_known_terms(first, &r->cv[i])) {
+            first->partner = i + 1;
+            r->cv[i].lanes_done = 1;
+            return;
+        }
+    }
+}
+
 static hl_ev rec_conv(hl_em *e, const hl_conv *c, int *has)
 {
     rec *r = rec_of(e);
@@ -404,6 +437,7 @@ static hl_ev rec_conv(hl_em *e, const hl_conv *c, int *has)
     m->lwa = m->lwb = -1;
     conv_weights(r, m, c);
     conv_fresh(m, c, m->lx, m->ly);
+    pair_up(r, r->ncv - 1);
     return ev_loc(emit(r, M_CONV, r->ncv - 1, 0, 0, 0)->d);
 }
 
@@ -444,6 +478,11 @@ static double *at(const spaces *s, long l)
     }
 }
 
+static int conv_code(const mconv *m)
+{
+    return m->partner ? M_CONV_PAIR : m->lanes_done ? M_CONV_LANES : M_CONV + m->kind;
+}
+
 static hl_prog *finish(rec *r, double *reg, int ncode, int *start, int nk)
 {
     hl_prog *p = hl_xcalloc(1, sizeof *p);
@@ -454,7 +493,7 @@ static hl_prog *finish(rec *r, double *reg, int ncode, int *start, int nk)
     p->op = hl_xmalloc(((size_t)r->nops + 1) * sizeof *p->op);
     for (int i = 0; i < r->nops; i++) {
         const rop *o = &r->ops[i];
-        int code = o->code == M_CONV ? M_CONV + r->cv[o->arg].kind : o->code;
+        int code = o->code == M_CONV ? conv_code(&r->cv[o->arg]) : o->code;
         p->op[i] = (mop){code, o->arg, at(&s, o->d), at(&s, o->a), at(&s, o->b), at(&s, o->c)};
     }
     p->cv = r->cv;
@@ -569,26 +608,29 @@ static double call(int f, double a, double b)
 
 /* The known terms j = jl..jh into lanes l0..l3 by position, each lane
  * starting with its first term (0 + t would turn a -0 into +0). */
-#define LANES(TERM)                                                                                \
+#define LANES(TERM) LANES_BY(SET1, ADD1, TERM)
+#define SET1(i, j, TERM) (l##i = TERM(j))
+#define ADD1(i, j, TERM) (l##i += TERM(j))
+#define LANES_BY(SET, ADD, TERM)                                                                   \
     do {                                                                                           \
         int j = jl;                                                                                \
         if (jh - jl + 1 >= 4) {                                                                    \
-            l0 = TERM(j), l1 = TERM(j + 1), l2 = TERM(j + 2), l3 = TERM(j + 3);                    \
+            SET(0, j, TERM), SET(1, j + 1, TERM), SET(2, j + 2, TERM), SET(3, j + 3, TERM);        \
             for (j += 4; j + 3 <= jh; j += 4)                                                      \
-                l0 += TERM(j), l1 += TERM(j + 1), l2 += TERM(j + 2), l3 += TERM(j + 3);            \
+                ADD(0, j, TERM), ADD(1, j + 1, TERM), ADD(2, j + 2, TERM), ADD(3, j + 3, TERM);    \
             if (j <= jh)                                                                           \
-                l0 += TERM(j);                                                                     \
+                ADD(0, j, TERM);                                                                   \
             if (j + 1 <= jh)                                                                       \
-                l1 += TERM(j + 1);                                                                 \
+                ADD(1, j + 1, TERM);                                                               \
             if (j + 2 <= jh)                                                                       \
-                l2 += TERM(j + 2);                                                                 \
+                ADD(2, j + 2, TERM);                                                               \
         } else {                                                                                   \
             if (j <= jh)                                                                           \
-                l0 = TERM(j);                                                                      \
+                SET(0, j, TERM);                                                                   \
             if (j + 1 <= jh)                                                                       \
-                l1 = TERM(j + 1);                                                                  \
+                SET(1, j + 1, TERM);                                                               \
             if (j + 2 <= jh)                                                                       \
-                l2 = TERM(j + 2);                                                                  \
+                SET(2, j + 2, TERM);                                                               \
         }                                                                                          \
     } while (0)
 
@@ -654,6 +696,25 @@ static double conv_intw(const mconv *m)
     return conv_tail(m, l0, l1, l2, l3);
 }
 
+/* Both sums of a pair (mconv): w[j] x[j] once, times y[k-j] and z[k-j]. */
+#define SET2(i, j, TERM) (wx = w[j] * x[j], l##i = wx * y[k - (j)], u##i = wx * z[k - (j)])
+#define ADD2(i, j, TERM) (wx = w[j] * x[j], l##i += wx * y[k - (j)], u##i += wx * z[k - (j)])
+
+static double conv_pair(const mconv *m, mconv *second)
+{
+    const double *x = m->x, *y = m->y, *z = second->y, *w = m->w;
+    const int k = m->k, jl = m->jl, jh = m->jh;
+    double l0 = 0, l1 = 0, l2 = 0, l3 = 0, u0 = 0, u1 = 0, u2 = 0, u3 = 0, wx;
+    LANES_BY(SET2, ADD2, _);
+    second->lane[0] = u0, second->lane[1] = u1, second->lane[2] = u2, second->lane[3] = u3;
+    return conv_tail(m, l0, l1, l2, l3);
+}
+
+static double conv_lanes(const mconv *m)
+{
+    return conv_tail(m, m->lane[0], m->lane[1], m->lane[2], m->lane[3]);
+}
+
 static double conv_weighted(const mconv *m)
 {
     const double *x = m->x, *y = m->y, wa = *m->wa, wb = *m->wb;
@@ -701,10 +762,10 @@ static inline __attribute__((always_inline)) void conv_post(const mconv *m, doub
  * branch predictor learns each op's successor in the fixed sequence. */
 void hl_prog_run(const hl_prog *p, int k)
 {
-    static const void *const go[] = {&&mov,    &&neg,     &&add,    &&sub,     &&mul,
-                                     &&div,    &&fma_,    &&call_,  &&sincos_, &&conv_,
-                                     &&conv_w, &&conv_iw, &&conv_s, &&end};
-    const mconv *cv = p->cv;
+    static const void *const go[] = {&&mov,    &&neg,    &&add,     &&sub,   &&mul,    &&div,
+                                     &&fma_,   &&call_,  &&sincos_, &&conv_, &&conv_w, &&conv_iw,
+                                     &&conv_s, &&conv_p, &&conv_l,  &&end};
+    mconv *cv = p->cv; /* a pair's first convolution writes its partner's lanes */
     const mop *o = p->op + p->start[k], *stop = p->op + p->start[k + 1];
 #define NEXT() goto *go[++o < stop ? o->code : M_END]
     if (o == stop)
@@ -748,6 +809,12 @@ conv_iw:
     NEXT();
 conv_s:
     conv_post(&cv[o->arg], conv_sym(&cv[o->arg]), o->d);
+    NEXT();
+conv_p:
+    conv_post(&cv[o->arg], conv_pair(&cv[o->arg], &cv[cv[o->arg].partner - 1]), o->d);
+    NEXT();
+conv_l:
+    conv_post(&cv[o->arg], conv_lanes(&cv[o->arg]), o->d);
     NEXT();
 end:
     return;
