@@ -669,11 +669,14 @@ static inline __attribute__((always_inline)) double conv_tail(const mconv *m, do
         n++;
     }
     double s = n >= 4 ? (l0 + l1) + (l2 + l3) : n == 3 ? (l0 + l1) + l2 : n == 2 ? l0 + l1 : l0;
-    int i = 0;
+    /* at most two fresh terms (x's and y's): written out, no loop */
+    const fresh *f = m->f, *end = m->f + m->nf;
     if (n == 0) /* a sum of one term is that term (0 + t would lose a -0) */
-        s = fresh_term(m, &m->f[i++]);
-    for (; i < m->nf; i++)
-        s += fresh_term(m, &m->f[i]);
+        s = fresh_term(m, f++);
+    if (f < end)
+        s += fresh_term(m, f++);
+    if (f < end)
+        s += fresh_term(m, f);
     return s;
 }
 
