@@ -6,7 +6,12 @@
  * of the current instruction, written as index * 4 + space.  Locations
  * become pointers when the program is finished.  A value stored (or kept)
  * right after the operation that made it is written there directly by that
- * operation, so most stores cost nothing. */
+ * operation, so most stores cost nothing.
+ *
+ * Over 800 lines for a reason: the recorder's choices (a convolution's
+ * kind, its pairing, its post-operations) and the loop that runs them share
+ * one private micro-op layout; split, that layout would become a header
+ * every change touches twice. */
 #define _GNU_SOURCE /* sincos */
 #include <math.h>
 #include <stdlib.h>
