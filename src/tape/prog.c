@@ -6,7 +6,12 @@
  * of the current instruction, written as index * 4 + space.  Locations
  * become pointers when the program is finished.  A value stored (or kept)
  * right after the operation that made it is written there directly by that
- * operation, so most stores cost nothing. */
+ * operation, so most stores cost nothing.
+ *
+ * Over 800 lines for a reason: the recorder's choices (a convolution's
+ * kind, its pairing, its post-operations) and the loop that runs them share
+ * one private micro-op layout; split, that layout would become a header
+ * every change touches twice. */
 #define _GNU_SOURCE /* sincos */
 #include <math.h>
 #include <stdlib.h>
@@ -31,7 +36,12 @@ typedef enum mcode {
     M_FMA,
     M_CALL,
     M_SINCOS,
-    M_CONV,
+    M_CONV, /* while recording; a program runs M_CONV + the convolution's kind */
+    M_CONV_WEIGHTED,
+    M_CONV_INTW,
+    M_CONV_SYM,
+    M_CONV_PAIR,  /* an integer-weighted convolution and its partner's lanes */
+    M_CONV_LANES, /* a partner: its lanes are summed already */
     M_END
 } mcode;
 
@@ -51,12 +61,13 @@ typedef struct rop {
 } rop;
 
 /* How a convolution's terms read: x[j] y[k-j], (w x[j]) y[k-j], or a
- * square's pairs (2 x[j]) x[k-j]. */
+ * square's pairs (2 x[j]) x[k-j].  In the order of the M_CONV codes. */
 enum { CV_PLAIN, CV_WEIGHTED, CV_INTW, CV_SYM };
 
-/* A fresh term (rule.h): (w *p) *q, or *p *q when how is F_PLAIN; w is a
- * constant (F_CONST) or wa j + wb of the run (F_RUN). */
-enum { F_PLAIN, F_CONST, F_RUN };
+/* A fresh term (rule.h): (w *p) *q, w a constant (F_CONST) or wa j + wb
+ * of the run (F_RUN).  A plain term p q is a constant one with w = 1 (1 p
+ * is p exactly, so the bits agree and the loop has one branch less). */
+enum { F_CONST, F_RUN };
 typedef struct fresh {
     const double *p, *q;
     long lp, lq; /* while recording */
@@ -84,6 +95,15 @@ typedef struct mconv {
     post post[NPOST];
     long lx, ly, lwa, lwb; /* while recording */
     int kind, k, jl, jh, mid, nf;
+    int npair; /* the known terms before the middle one: max(jh - jl + 1, 0) */
+    /* Two convolutions of one rule call over the same x, weights and range
+     * (sin's and cos's, say) read w[j] x[j] once: the first one's loop sums
+     * the known terms of both, and leaves the second's lanes in its lane[]
+     * (the known terms read no coefficient k, which is all a rule call
+     * writes, so summing them early changes no bit).  partner: the second's
+     * index + 1 in the first, 0 otherwise; lanes_done in the second. */
+    int partner, lanes_done;
+    double lane[4];
     long ia, ib;     /* CV_INTW: the weights wa, wb are these small integers, */
     const double *w; /* and w[j] = ia j + ib for j = jl..jh */
     long lw;         /* while recording: w's offset in the table of weights */
@@ -324,6 +344,7 @@ static void conv_shape(mconv *m, const hl_conv *c)
     m->jl = np > 0 ? idx[0] : 1;
     m->jh = np > 0 ? idx[np - 1] : 0;
     m->nf = nf;
+    m->npair = np > 0 ? np : 0;
     for (int i = 0; i < nf; i++)
         m->f[i].j = fr[i];
     free(idx);
@@ -372,11 +393,34 @@ static void conv_fresh(mconv *m, const hl_conv *c, long x, long y)
         int j = f->j, x_side = j == k && k > 0;
         f->lp = x_side ? y : x + 4L * j;
         f->lq = x_side ? x + 4L * k : y + 4L * (k - j);
-        f->how = c->weighted ? F_RUN : c->sym && 2 * j < k ? F_CONST : F_PLAIN;
-        f->w = 2;
+        f->how = c->weighted ? F_RUN : F_CONST;
+        f->w = c->sym && 2 * j < k ? 2 : 1;
         if (m->kind == CV_INTW) {
             f->how = F_CONST;
             f->w = (double)(m->ia * j + m->ib);
+        }
+    }
+}
+
+static int same_known_terms(const mconv *a, const mconv *b)
+{
+    return a->kind == CV_INTW && b->kind == CV_INTW && a->lx == b->lx && a->ia == b->ia &&
+           a->ib == b->ib && a->k == b->k && a->jl == b->jl && a->jh == b->jh && !a->mid &&
+           !b->mid && a->npair > 0;
+}
+
+/* Make convolution i the partner of an earlier one of this rule call that
+ * shares its known terms' x and weights (see mconv). */
+static void pair_up(rec *r, int i)
+{
+    for (int o = r->first_op; o < r->nops; o++) {
+        if (r->ops[o].code != M_CONV)
+            continue;
+        mconv *first = &r->cv[r->ops[o].arg];
+        if (first->partner == 0 && !first->lanes_done && same_known_terms(first, &r->cv[i])) {
+            first->partner = i + 1;
+            r->cv[i].lanes_done = 1;
+            return;
         }
     }
 }
@@ -398,6 +442,7 @@ static hl_ev rec_conv(hl_em *e, const hl_conv *c, int *has)
     m->lwa = m->lwb = -1;
     conv_weights(r, m, c);
     conv_fresh(m, c, m->lx, m->ly);
+    pair_up(r, r->ncv - 1);
     return ev_loc(emit(r, M_CONV, r->ncv - 1, 0, 0, 0)->d);
 }
 
@@ -438,6 +483,11 @@ static double *at(const spaces *s, long l)
     }
 }
 
+static int conv_code(const mconv *m)
+{
+    return m->partner ? M_CONV_PAIR : m->lanes_done ? M_CONV_LANES : M_CONV + m->kind;
+}
+
 static hl_prog *finish(rec *r, double *reg, int ncode, int *start, int nk)
 {
     hl_prog *p = hl_xcalloc(1, sizeof *p);
@@ -448,7 +498,8 @@ static hl_prog *finish(rec *r, double *reg, int ncode, int *start, int nk)
     p->op = hl_xmalloc(((size_t)r->nops + 1) * sizeof *p->op);
     for (int i = 0; i < r->nops; i++) {
         const rop *o = &r->ops[i];
-        p->op[i] = (mop){o->code, o->arg, at(&s, o->d), at(&s, o->a), at(&s, o->b), at(&s, o->c)};
+        int code = o->code == M_CONV ? conv_code(&r->cv[o->arg]) : o->code;
+        p->op[i] = (mop){code, o->arg, at(&s, o->d), at(&s, o->a), at(&s, o->b), at(&s, o->c)};
     }
     p->cv = r->cv;
     p->wts = r->wts ? r->wts : hl_xmalloc(1);
@@ -529,26 +580,29 @@ void hl_prog_free(hl_prog *p)
 
 /* The known terms j = jl..jh into lanes l0..l3 by position, each lane
  * starting with its first term (0 + t would turn a -0 into +0). */
-#define LANES(TERM)                                                                                \
+#define LANES(TERM) LANES_BY(SET1, ADD1, TERM)
+#define SET1(i, j, TERM) (l##i = TERM(j))
+#define ADD1(i, j, TERM) (l##i += TERM(j))
+#define LANES_BY(SET, ADD, TERM)                                                                   \
     do {                                                                                           \
         int j = jl;                                                                                \
         if (jh - jl + 1 >= 4) {                                                                    \
-            l0 = TERM(j), l1 = TERM(j + 1), l2 = TERM(j + 2), l3 = TERM(j + 3);                    \
+            SET(0, j, TERM), SET(1, j + 1, TERM), SET(2, j + 2, TERM), SET(3, j + 3, TERM);        \
             for (j += 4; j + 3 <= jh; j += 4)                                                      \
-                l0 += TERM(j), l1 += TERM(j + 1), l2 += TERM(j + 2), l3 += TERM(j + 3);            \
+                ADD(0, j, TERM), ADD(1, j + 1, TERM), ADD(2, j + 2, TERM), ADD(3, j + 3, TERM);    \
             if (j <= jh)                                                                           \
-                l0 += TERM(j);                                                                     \
+                ADD(0, j, TERM);                                                                   \
             if (j + 1 <= jh)                                                                       \
-                l1 += TERM(j + 1);                                                                 \
+                ADD(1, j + 1, TERM);                                                               \
             if (j + 2 <= jh)                                                                       \
-                l2 += TERM(j + 2);                                                                 \
+                ADD(2, j + 2, TERM);                                                               \
         } else {                                                                                   \
             if (j <= jh)                                                                           \
-                l0 = TERM(j);                                                                      \
+                SET(0, j, TERM);                                                                   \
             if (j + 1 <= jh)                                                                       \
-                l1 = TERM(j + 1);                                                                  \
+                SET(1, j + 1, TERM);                                                               \
             if (j + 2 <= jh)                                                                       \
-                l2 = TERM(j + 2);                                                                  \
+                SET(2, j + 2, TERM);                                                               \
         }                                                                                          \
     } while (0)
 
@@ -557,13 +611,17 @@ void hl_prog_free(hl_prog *p)
 #define T_INTW(j) (w[j] * x[j] * y[k - (j)])
 #define T_SYM(j) (2 * x[j] * x[k - (j)])
 
-/* the lanes added, then the middle and fresh terms (n known terms so far) */
+static inline double fresh_term(const mconv *m, const fresh *f)
+{
+    double w = f->how == F_RUN ? *m->wa * (double)f->j + *m->wb : f->w;
+    return (w * *f->p) * *f->q;
+}
+
+/* the lanes added, then the middle and fresh terms */
 static inline __attribute__((always_inline)) double conv_tail(const mconv *m, double l0, double l1,
                                                               double l2, double l3)
 {
-    int n = m->jh - m->jl + 1;
-    if (n < 0)
-        n = 0;
+    int n = m->npair;
     if (m->mid) {
         double t = m->x[m->k / 2] * m->x[m->k / 2];
         switch (n % 4) {
@@ -583,17 +641,14 @@ static inline __attribute__((always_inline)) double conv_tail(const mconv *m, do
         n++;
     }
     double s = n >= 4 ? (l0 + l1) + (l2 + l3) : n == 3 ? (l0 + l1) + l2 : n == 2 ? l0 + l1 : l0;
-    for (int i = 0; i < m->nf; i++) {
-        const fresh *f = &m->f[i];
-        double p = *f->p, t;
-        if (f->how == F_PLAIN)
-            t = p * *f->q;
-        else if (f->how == F_CONST)
-            t = (f->w * p) * *f->q;
-        else
-            t = ((*m->wa * (double)f->j + *m->wb) * p) * *f->q;
-        s = n > 0 || i > 0 ? s + t : t;
-    }
+    /* at most two fresh terms (x's and y's): written out, no loop */
+    const fresh *f = m->f, *end = m->f + m->nf;
+    if (n == 0) /* a sum of one term is that term (0 + t would lose a -0) */
+        s = fresh_term(m, f++);
+    if (f < end)
+        s += fresh_term(m, f++);
+    if (f < end)
+        s += fresh_term(m, f);
     return s;
 }
 
@@ -616,6 +671,25 @@ static double conv_intw(const mconv *m)
     return conv_tail(m, l0, l1, l2, l3);
 }
 
+/* Both sums of a pair (mconv): w[j] x[j] once, times y[k-j] and z[k-j]. */
+#define SET2(i, j, TERM) (wx = w[j] * x[j], l##i = wx * y[k - (j)], u##i = wx * z[k - (j)])
+#define ADD2(i, j, TERM) (wx = w[j] * x[j], l##i += wx * y[k - (j)], u##i += wx * z[k - (j)])
+
+static double conv_pair(const mconv *m, mconv *second)
+{
+    const double *x = m->x, *y = m->y, *z = second->y, *w = m->w;
+    const int k = m->k, jl = m->jl, jh = m->jh;
+    double l0 = 0, l1 = 0, l2 = 0, l3 = 0, u0 = 0, u1 = 0, u2 = 0, u3 = 0, wx;
+    LANES_BY(SET2, ADD2, _);
+    second->lane[0] = u0, second->lane[1] = u1, second->lane[2] = u2, second->lane[3] = u3;
+    return conv_tail(m, l0, l1, l2, l3);
+}
+
+static double conv_lanes(const mconv *m)
+{
+    return conv_tail(m, m->lane[0], m->lane[1], m->lane[2], m->lane[3]);
+}
+
 static double conv_weighted(const mconv *m)
 {
     const double *x = m->x, *y = m->y, wa = *m->wa, wb = *m->wb;
@@ -634,23 +708,9 @@ static double conv_sym(const mconv *m)
     return conv_tail(m, l0, l1, l2, l3);
 }
 
-static double conv_run(const mconv *m)
+/* The operations recorded after the sum s, run in the same micro-op. */
+static inline __attribute__((always_inline)) void conv_post(const mconv *m, double s, double *d)
 {
-    switch (m->kind) {
-    case CV_PLAIN:
-        return conv_plain(m);
-    case CV_INTW:
-        return conv_intw(m);
-    case CV_WEIGHTED:
-        return conv_weighted(m);
-    default:
-        return conv_sym(m);
-    }
-}
-
-static inline void conv_post(const mconv *m, double *d)
-{
-    double s = conv_run(m);
     *d = s;
     for (int i = 0; i < m->npost; i++) {
         const post *p = &m->post[i];
@@ -677,9 +737,10 @@ static inline void conv_post(const mconv *m, double *d)
  * branch predictor learns each op's successor in the fixed sequence. */
 void hl_prog_run(const hl_prog *p, int k)
 {
-    static const void *const go[] = {&&mov,  &&neg,   &&add,     &&sub,  &&mul, &&div,
-                                     &&fma_, &&call_, &&sincos_, &&conv, &&end};
-    const mconv *cv = p->cv;
+    static const void *const go[] = {&&mov,    &&neg,    &&add,     &&sub,   &&mul,    &&div,
+                                     &&fma_,   &&call_,  &&sincos_, &&conv_, &&conv_w, &&conv_iw,
+                                     &&conv_s, &&conv_p, &&conv_l,  &&end};
+    mconv *cv = p->cv; /* a pair's first convolution writes its partner's lanes */
     const mop *o = p->op + p->start[k], *stop = p->op + p->start[k + 1];
 #define NEXT() goto *go[++o < stop ? o->code : M_END]
     if (o == stop)
@@ -712,8 +773,23 @@ call_:
 sincos_:
     sincos(*o->a, o->d, (double *)o->c);
     NEXT();
-conv:
-    conv_post(&cv[o->arg], o->d);
+conv_:
+    conv_post(&cv[o->arg], conv_plain(&cv[o->arg]), o->d);
+    NEXT();
+conv_w:
+    conv_post(&cv[o->arg], conv_weighted(&cv[o->arg]), o->d);
+    NEXT();
+conv_iw:
+    conv_post(&cv[o->arg], conv_intw(&cv[o->arg]), o->d);
+    NEXT();
+conv_s:
+    conv_post(&cv[o->arg], conv_sym(&cv[o->arg]), o->d);
+    NEXT();
+conv_p:
+    conv_post(&cv[o->arg], conv_pair(&cv[o->arg], &cv[cv[o->arg].partner - 1]), o->d);
+    NEXT();
+conv_l:
+    conv_post(&cv[o->arg], conv_lanes(&cv[o->arg]), o->d);
     NEXT();
 end:
     return;

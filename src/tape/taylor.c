@@ -46,9 +46,16 @@ static void layout_d(hl_tape *t, int order)
  * product by a rounded 1/(k+1) alone drifts the phase. */
 static void ode_divide(double *td, const int *outreg, int n, int S, int k, double hi, double lo)
 {
+    double *next = td + k + 1;
+    const double *f = td + k;
+    if (lo == 0) {
+        for (int i = 0; i < n; i++)
+            next[(size_t)i * S] = f[(size_t)outreg[i] * S] * hi;
+        return;
+    }
     for (int i = 0; i < n; i++) {
-        double f = td[(size_t)outreg[i] * S + k];
-        td[(size_t)i * S + k + 1] = lo == 0 ? f * hi : fma(f, hi, f * lo);
+        double fi = f[(size_t)outreg[i] * S];
+        next[(size_t)i * S] = fma(fi, hi, fi * lo);
     }
 }
 
