@@ -494,7 +494,8 @@ static hl_prog *finish(rec *r, double *reg, int ncode, int *start, int nk)
     spaces s = {reg, NULL, r->nconst, r->nconst + r->maxtemp};
     p->mem = hl_xcalloc((size_t)s.keep0 + 2 * (size_t)ncode + 1, sizeof *p->mem);
     s.mem = p->mem;
-    memcpy(p->mem, r->consts, (size_t)r->nconst * sizeof *p->mem);
+    if (r->nconst > 0) /* consts is NULL when there are none */
+        memcpy(p->mem, r->consts, (size_t)r->nconst * sizeof *p->mem);
     p->op = hl_xmalloc(((size_t)r->nops + 1) * sizeof *p->op);
     for (int i = 0; i < r->nops; i++) {
         const rop *o = &r->ops[i];
