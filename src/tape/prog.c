@@ -668,7 +668,7 @@ static double conv_plain(const mconv *m)
     return conv_tail(m, l0, l1, l2, l3);
 }
 
-static double conv_intw(const mconv *m)
+static inline __attribute__((always_inline)) double conv_intw(const mconv *m)
 {
     const double *x = m->x, *y = m->y;
     const int k = m->k, jl = m->jl, jh = m->jh;
