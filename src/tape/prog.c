@@ -104,9 +104,14 @@ typedef struct mconv {
      * index + 1 in the first, 0 otherwise; lanes_done in the second. */
     int partner, lanes_done;
     double lane[4];
-    long ia, ib;     /* CV_INTW: the weights wa, wb are these small integers, */
-    const double *w; /* and w[j] = ia j + ib for j = jl..jh */
-    long lw;         /* while recording: w's offset in the table of weights */
+    long ia, ib; /* CV_INTW: the weights wa, wb are these small integers, */
+    double *w;   /* and w[j] = ia j + ib for j = jl..jh */
+    long lw;     /* while recording: w's offset in the table of weights */
+    /* CV_WEIGHTED: wa, wb are values of the run (a^c's c + 1), the same at
+     * every step of a flow; w[j] = wa j + wb is computed again only when
+     * their bits differ from the ones w was computed for (wa_w, wb_w). */
+    int w_valid;
+    double wa_w, wb_w;
     fresh f[2];
 } mconv;
 
@@ -370,15 +375,17 @@ static void conv_weights(rec *r, mconv *m, const hl_conv *c)
         return;
     m->lwa = where(r, c->wa);
     m->lwb = where(r, c->wb);
-    if (!small_int(r, m->lwa, &m->ia) || !small_int(r, m->lwb, &m->ib))
-        return;
-    m->kind = CV_INTW;
     long n = m->jh - m->jl + 1 > 0 ? m->jh - m->jl + 1 : 0;
     if (r->nwts + n > r->wcap) {
         r->wcap = 2 * (r->nwts + n) + 64;
         r->wts = hl_xrealloc(r->wts, (size_t)r->wcap * sizeof *r->wts);
     }
     m->lw = r->nwts - m->jl; /* w[j] = wts[lw + j] */
+    if (!small_int(r, m->lwa, &m->ia) || !small_int(r, m->lwb, &m->ib)) {
+        r->nwts += n; /* filled by the run (conv_run_weights) */
+        return;
+    }
+    m->kind = CV_INTW;
     for (long j = m->jl; j <= m->jh; j++)
         r->wts[r->nwts++] = (double)(m->ia * j + m->ib);
 }
@@ -608,7 +615,7 @@ void hl_prog_free(hl_prog *p)
     } while (0)
 
 #define T_PLAIN(j) (x[j] * y[k - (j)])
-#define T_WEIGHTED(j) ((wa * (double)(j) + wb) * x[j] * y[k - (j)])
+#define W_RUN(j) (wa * (double)(j) + wb)
 #define T_INTW(j) (w[j] * x[j] * y[k - (j)])
 #define T_SYM(j) (2 * x[j] * x[k - (j)])
 
@@ -662,7 +669,7 @@ static double conv_plain(const mconv *m)
     return conv_tail(m, l0, l1, l2, l3);
 }
 
-static double conv_intw(const mconv *m)
+static inline __attribute__((always_inline)) double conv_intw(const mconv *m)
 {
     const double *x = m->x, *y = m->y;
     const int k = m->k, jl = m->jl, jh = m->jh;
@@ -691,13 +698,27 @@ static double conv_lanes(const mconv *m)
     return conv_tail(m, m->lane[0], m->lane[1], m->lane[2], m->lane[3]);
 }
 
-static double conv_weighted(const mconv *m)
+static int same_bits(double a, double b)
 {
-    const double *x = m->x, *y = m->y, wa = *m->wa, wb = *m->wb;
-    const int k = m->k, jl = m->jl, jh = m->jh;
-    double l0 = 0, l1 = 0, l2 = 0, l3 = 0;
-    LANES(T_WEIGHTED);
-    return conv_tail(m, l0, l1, l2, l3);
+    return memcmp(&a, &b, sizeof a) == 0;
+}
+
+/* w[j] = wa j + wb for the run's wa, wb, rounded as rule.h says; kept
+ * while wa and wb keep their bits. */
+static void conv_run_weights(mconv *m)
+{
+    const double wa = *m->wa, wb = *m->wb;
+    if (m->w_valid && same_bits(wa, m->wa_w) && same_bits(wb, m->wb_w))
+        return;
+    for (int j = m->jl; j <= m->jh; j++)
+        m->w[j] = W_RUN(j);
+    m->wa_w = wa, m->wb_w = wb, m->w_valid = 1;
+}
+
+static double conv_weighted(mconv *m)
+{
+    conv_run_weights(m);
+    return conv_intw(m);
 }
 
 static double conv_sym(const mconv *m)
