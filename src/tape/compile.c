@@ -725,7 +725,7 @@ int hl_tape_nregs(const hl_tape *t) { return t->nregs; }
 static const char *const op_names[HL_OP_COUNT] = {
     "NEG", "ADD", "SUB", "MUL", "DIV", "SQR", "ADDK", "SUBK", "KSUB", "MULK", "DIVK",
     "KDIV", "POWK", "SQRT", "EXP", "LOG", "SINCOS", "SINHCOSH", "TAN", "TANH", "ATAN",
-    "ASIN", "ACOS", "ATAN2",
+    "ASIN", "ACOS", "ASINH", "ATAN2",
 };
 
 const char *hl_op_name(hl_op op)

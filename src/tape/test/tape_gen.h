@@ -43,6 +43,7 @@ static double ref(const hl_expr *e, const double *v)
         case HL_SINH: return sinh(a);
         case HL_COSH: return cosh(a);
         case HL_TANH: return tanh(a);
+        case HL_ASINH: return asinh(a);
         default: return NAN;
         }
     }
@@ -74,7 +75,7 @@ static const hl_expr *gen(hl_pool *P, int depth)
     const hl_expr *sa = hl_call(P, HL_SIN, a);              /* in [-1, 1] */
     const hl_expr *half = hl_div(P, sa, two);
     const hl_expr *pi = hl_pi(P);
-    switch (rnd(27)) {
+    switch (rnd(28)) {
     case 0: return hl_add(P, a, b);
     case 1: return hl_sub(P, a, b);
     case 2: return hl_mul(P, a, b);
@@ -100,7 +101,12 @@ static const hl_expr *gen(hl_pool *P, int depth)
     case 22: return hl_sub(P, pi, a);                   /* KSUB */
     case 23: return hl_sub(P, a, pi);                   /* SUBK */
     case 24: return hl_div(P, pi, pos);                 /* KDIV */
-    case 25: return hl_call2(P, HL_ATAN2, a, b);         /* any quadrant */
+    case 25: /* any quadrant; off the cut: a y that is 0 but not folded to 0
+              * (sin(pi)) leaves Arb a ball [-pi, pi] where x < 0, and the folder
+              * refuses a constant one (issue 14's note) */
+        return hl_call2(P, HL_ATAN2, hl_add(P, a, hl_sym(P, vars[1])),
+                        hl_add(P, b, hl_sym(P, vars[0])));
+    case 26: return hl_call(P, HL_ASINH, a);
     default: return hl_sub(P, hl_num_si(P, 2), hl_div(P, hl_num_si(P, 3), pos)); /* KSUB, KDIV */
     }
 }
