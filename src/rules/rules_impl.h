@@ -63,6 +63,10 @@ static inline hl_ev rule_keep_inverse(hl_em *E, hl_ev v)
     return inv;
 }
 
+/* asin, acos, asinh (asin.c): d' = sign a'/x, x = sqrt(1 + a2_sign a^2);
+ * point computes D[0] */
+void rule_root_inverse(hl_em *E, int k, void (*point)(hl_em *), int a2_sign, int sign);
+
 /* The rules, by file. */
 extern const hl_rule hl_rule_neg, hl_rule_add, hl_rule_sub, hl_rule_addk, hl_rule_subk,
     hl_rule_ksub, hl_rule_mulk, hl_rule_divk; /* linear.c */
