@@ -86,15 +86,12 @@ static void summary_json(hl_buf *b, const repro_opts *p, const char *formats,
     hl_json_key(&j, "figures");
     hl_json_array_begin(&j);
     for (int i = 0; i < HL_PAPER_NFIGURES; i++) {
-        char num[64];
         hl_json_object_begin(&j);
         hl_json_kv_string(&j, "name", figs[i].name);
         hl_json_kv_string(&j, "caption", figs[i].caption);
         hl_json_kv_string(&j, "check_what", figs[i].check_what);
-        snprintf(num, sizeof num, "%.17g", figs[i].check);
-        hl_json_kv_string(&j, "check", num);
-        snprintf(num, sizeof num, "%.17g", figs[i].check_tol);
-        hl_json_kv_string(&j, "check_tol", num);
+        hl_json_kv_double(&j, "check", figs[i].check);
+        hl_json_kv_double(&j, "check_tol", figs[i].check_tol);
         hl_json_kv_bool(&j, "check_passed", figs[i].check <= figs[i].check_tol);
         hl_json_object_end(&j);
     }

@@ -636,9 +636,19 @@ static int fold_constants(hl_tape *t, hl_error *err)
     for (int i = 0; i < t->nregs; i++) {
         if (!t->isconst[i])
             continue;
-        if (!arb_is_finite(r + i) || mag_cmp_2exp_si(arb_radref(r + i), -80) > 0) {
+        if (!arf_is_finite(arb_midref(r + i))) {
             status = hl_error_set(err, HL_EDOM, NULL, -1, 0,
                                   "a constant subexpression is not finite");
+            break;
+        }
+        /* A wide ball around a finite value: the constant sits where its
+         * value jumps and 128 bits cannot say on which side (atan2(sin(pi),
+         * -1) is on atan2's cut, where the sign of an exact zero decides). */
+        if (!arb_is_finite(r + i) || mag_cmp_2exp_si(arb_radref(r + i), -80) > 0) {
+            status = hl_error_set(err, HL_EDOM, NULL, -1, 0,
+                                  "a constant subexpression cannot be decided: it lies on a "
+                                  "discontinuity (e.g. atan2 on its cut y = 0, x < 0); write "
+                                  "its value");
             break;
         }
         t->rd[i] = arf_get_d(arb_midref(r + i), ARF_RND_NEAR);

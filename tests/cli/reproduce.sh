@@ -51,6 +51,9 @@ import json, sys, os
 d = json.load(open(sys.argv[1]))
 assert d["out"] == "other" and d["formats"] == "png"
 assert len(d["figures"]) == 14 and all(f["check_passed"] for f in d["figures"])
+# the deviations are numbers, and check_passed is what they say
+assert all(isinstance(f[k], float) for f in d["figures"] for k in ("check", "check_tol"))
+assert all(f["check_passed"] == (f["check"] <= f["check_tol"]) for f in d["figures"])
 v = {f["id"]: f["verdict"] for f in d["formulas"]}
 differ = sorted(k for k, x in v.items() if x == "differs")
 assert differ == sorted(["euler-v3", "dg-K", "dg-W", "dg-ahead", "rel-3"]), differ

@@ -124,4 +124,12 @@ want = (1.01 ** 10 - 1) / 2
 assert abs(got - want) <= 1e-15, (got, want)
 PYEOF
 
+
+# ---- a constant on a discontinuity: said so, not "not finite" ------------
+# sin(pi) is 0 only in exact arithmetic; atan2 jumps there (pi or -pi)
+refused "discontinuity" run -H 'p^2/2 + atan2(sin(pi),-1)*q^2' --scheme rk4 --dt 0.1 --t 1 --init q=1,p=0
+# exactly on the cut's upper side the constant is pi (H = pi at q=1, p=0)
+run 0 run -H 'p^2/2 + atan2(0,-1)*q^2' --scheme rk4 --dt 0.1 --t 0.1 --init q=1,p=0 --no-reference
+has_line "0,1,0,3.1415926535897931"
 finish
+
