@@ -78,17 +78,19 @@ def to_text(x, what="formula"):
         return x
     if isinstance(x, bool):
         raise TypeError(f"{what} must be a formula (str or SymPy expression), not bool")
+    if isinstance(x, sp.Basic):
+        if isinstance(x, sp.Equality):
+            return f"{_printer.doprint(x.lhs)} = {_printer.doprint(x.rhs)}"
+        return _printer.doprint(x)
     if isinstance(x, numbers.Integral):
         return str(int(x))
+    if isinstance(x, numbers.Rational):  # fractions.Fraction: exact
+        return f"({x.numerator})/({x.denominator})"
     if isinstance(x, numbers.Real):
         v = float(x)
         if not math.isfinite(v):
             raise ValueError(f"{what} must be finite, not {v!r}")
         return repr(v)
-    if isinstance(x, sp.Basic):
-        if isinstance(x, (sp.Equality,)):
-            return f"{_printer.doprint(x.lhs)} = {_printer.doprint(x.rhs)}"
-        return _printer.doprint(x)
     raise TypeError(f"{what} must be a formula (str or SymPy expression), "
                     f"not {type(x).__name__}")
 
