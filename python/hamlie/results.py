@@ -4,6 +4,8 @@ Each keeps the library's raw answer (``.raw``: the dict with the keys of the
 command line's ``--json``, formulas as strings) and offers it converted: SymPy
 expressions keyed by the system's Symbols, NumPy arrays per variable.
 """
+from functools import cached_property
+
 import numpy as np
 import sympy as sp
 
@@ -50,57 +52,112 @@ class Errors:
     .modified_hamiltonians [h_1 = H, h_2, ...] and .modified_hamiltonian
     = sum_j D^(j-1) h_j; .tau (the series tau(D)), .W, .tau_closed,
     .tan_half_tau, .double_step; .invariants; .corrected; .raw (the dict).
+
+    The formulas are parsed by SymPy when first asked for (SymPy's parser
+    costs more than the analysis itself for large results), then kept.
     """
 
     def __init__(self, d, system):
-        read = system._read
         self.raw = d
         self.system = system
+        self._read = system._read
         self.scheme = d["scheme"]
-        self.order_computed = n = d["order_computed"]
-        self.v = [None, None] + [read.field(f) for f in d["fields"]]
+        self.order_computed = d["order_computed"]
         self.order = d["order"]
         self.two_ways_agree = d["two_ways_agree"]
         self.exact_to_order_computed = d["exact_to_order_computed"]
         lead = d["leading"] or {}
         self.leading = lead.get("k")
         self.leading_kind = lead.get("kind")
-        self.leading_lambda = read(lead.get("lambda"))
-        self.leading_h = read(lead.get("h"))
         self.leading_hamiltonian = lead.get("hamiltonian")
         self.explicit = d["explicit"]
-        self.expansion = {read.symbol(k): read(s) for k, s in d["expansion"].items()}
-        self.map = read.field(d["map"])
-        self.K = read.field(d["K"])
-        self.K_coefficients = (None if d["K_coefficients"] is None
-                               else [read.field(f) for f in d["K_coefficients"]])
-        mod = d["modified"]
-        self.modified_fields = [None] + [read.field(f) for f in mod["fields"]]
-        hs = mod["hamiltonians"]
-        self.modified_hamiltonians = None if hs is None else [read(h) for h in hs]
-        D = system.step
-        self.modified_hamiltonian = (None if hs is None else
-                                     sp.Add(*[D ** j * h for j, h in
-                                              enumerate(self.modified_hamiltonians)]))
         time = d["time"] or {}
         self.pure_time_translation = time.get("pure_time_translation")
-        self.tau = read(time.get("tau_series"))
-        self.W = read(time.get("W_series"))
-        self.tau_closed = read(time.get("tau"))
-        self.tan_half_tau = read(time.get("tan_half_tau"))
-        self.double_step = read(time.get("double_step"))
-        inv = d["invariants"]
-        self.invariants = None if inv is None else {
+        self.numeric_zero_test = d["numeric_zero_test"]
+
+    # ---- formulas, converted on first use -------------------------------------
+    @cached_property
+    def v(self):
+        return [None, None] + [self._read.field(f) for f in self.raw["fields"]]
+
+    @cached_property
+    def leading_lambda(self):
+        return self._read((self.raw["leading"] or {}).get("lambda"))
+
+    @cached_property
+    def leading_h(self):
+        return self._read((self.raw["leading"] or {}).get("h"))
+
+    @cached_property
+    def expansion(self):
+        return {self._read.symbol(k): self._read(s) for k, s in self.raw["expansion"].items()}
+
+    @cached_property
+    def map(self):
+        return self._read.field(self.raw["map"])
+
+    @cached_property
+    def K(self):
+        return self._read.field(self.raw["K"])
+
+    @cached_property
+    def K_coefficients(self):
+        ks = self.raw["K_coefficients"]
+        return None if ks is None else [self._read.field(f) for f in ks]
+
+    @cached_property
+    def modified_fields(self):
+        return [None] + [self._read.field(f) for f in self.raw["modified"]["fields"]]
+
+    @cached_property
+    def modified_hamiltonians(self):
+        hs = self.raw["modified"]["hamiltonians"]
+        return None if hs is None else [self._read(h) for h in hs]
+
+    @cached_property
+    def modified_hamiltonian(self):
+        hs = self.modified_hamiltonians
+        D = self.system.step
+        return None if hs is None else sp.Add(*[D ** j * h for j, h in enumerate(hs)])
+
+    def _time(self, key):
+        return self._read((self.raw["time"] or {}).get(key))
+
+    @cached_property
+    def tau(self):
+        return self._time("tau_series")
+
+    @cached_property
+    def W(self):
+        return self._time("W_series")
+
+    @cached_property
+    def tau_closed(self):
+        return self._time("tau")
+
+    @cached_property
+    def tan_half_tau(self):
+        return self._time("tan_half_tau")
+
+    @cached_property
+    def double_step(self):
+        return self._time("double_step")
+
+    @cached_property
+    def invariants(self):
+        inv, read = self.raw["invariants"], self._read
+        return None if inv is None else {
             "degree": inv["degree"],
             "polynomial": [read(s) for s in inv["polynomial"]],
             "rational": None if inv["rational"] is None else [read(s) for s in inv["rational"]]}
-        c = d["corrected"]
-        self.corrected = None if c is None else {
+
+    @cached_property
+    def corrected(self):
+        c, read = self.raw["corrected"], self._read
+        return None if c is None else {
             "subtracted_up_to": c["subtracted_up_to"], "map": read.field(c.get("map")),
             "v": [None, None] + [read.field(f) for f in c["fields"]], "order": c["order"],
             "leading_kind": (c["leading"] or {}).get("kind")}
-        self.numeric_zero_test = d["numeric_zero_test"]
-        self._n = n
 
     def __repr__(self):
         return (f"Errors({self.scheme}: order {self.order}, leading v_{self.leading} "
@@ -108,14 +165,15 @@ class Errors:
 
     def _repr_latex_(self):
         D = sp.latex(self.system.step)
+        n = self.order_computed
         lines = [f"\\text{{{self.scheme}: order {self.order}}}"]
-        for k in range(2, self._n + 1):
+        for k in range(2, n + 1):
             lines.append(f"v_{{{k}}} = {_latex_field(self.v[k])}")
         if self.leading_kind:
             lines.append(f"\\text{{leading: }} v_{{{self.leading}}}\\ "
                          f"\\text{{({self.leading_kind.replace('_', ' ')})}}")
         if self.tau is not None:
-            lines.append(f"\\tau({D}) = {sp.latex(self.tau)} + O({D}^{{{self._n + 1}}})")
+            lines.append(f"\\tau({D}) = {sp.latex(self.tau)} + O({D}^{{{n + 1}}})")
         if self.modified_hamiltonian is not None:
             lines.append(f"\\tilde H = {sp.latex(self.modified_hamiltonian)}")
         return "$\\begin{aligned}" + " \\\\ ".join("& " + s for s in lines) + \
