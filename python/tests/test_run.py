@@ -184,3 +184,35 @@ def test_repr_and_plot(tmp_path):
     fig = r.plot()
     fig.savefig(tmp_path / "run.png")
     assert (tmp_path / "run.png").stat().st_size > 1000
+
+
+def test_lie_fixed_step_is_truncated_series():
+    """scheme "lie" with dt alone and order=3: z -> sum_{k<=3} (D J)^k/k! z"""
+    dt = 0.1
+    r = hamlie.System(OSC).run("lie", dt=dt, t=1, order=3, init={"x": 1, "p": 0})
+    J = np.array([[0.0, 1.0], [-1.0, 0.0]])
+    M = np.eye(2) + dt * J + (dt * J) @ (dt * J) / 2 + (dt * J) @ (dt * J) @ (dt * J) / 6
+    z = np.array([1.0, 0.0])
+    for _ in range(10):
+        z = M @ z
+    assert np.allclose(r.z[-1], z, rtol=0, atol=1e-15)
+    assert r.summary["integrator"] == "fixed-step"
+
+
+def test_exact_flow_of_the_pendulum():
+    r = hamlie.System("p^2/2 - cos(q)").run("exact", dt=0.1, t=1, init={"q": 1, "p": 0})
+    assert r.sigma.max() < 1e-25
+    assert np.ptp(r.H) < 1e-14
+
+
+def test_ctrl_c_stops_a_run():
+    import os
+    import signal
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            hamlie.System("p^2/2 - cos(q)").run("rk4", dt=1e-4, t=1e6, every=10 ** 6,
+                                                init={"q": 1, "p": 0})
+    finally:
+        timer.cancel()

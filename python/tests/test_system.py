@@ -126,3 +126,35 @@ def test_step_renamed():
     s = hamlie.System("p^2/2 + q^2/2", step="h")
     assert s.step == h
     assert same(s.lie_series(order=2)[q], q + h * p - h ** 2 / 2 * q)
+
+
+def test_names_sympy_would_take_stay_symbols():
+    E, beta = sp.Symbol("E"), sp.Symbol("beta")
+    s = hamlie.System("p^2/2 + E*q^2/2 + beta*q^4")
+    assert s.parameters == [E, beta]
+    assert same(s.generator()[p], -E * q - 4 * beta * q ** 3)
+
+
+def test_pairs_as_list():
+    s = hamlie.System("px^2/2 + x^2/2", pairs=[("x", "px")])
+    assert s.variables == [x, px]
+
+
+@pytest.mark.parametrize("H,exc", [
+    ("p^2/2 - cos(q", hamlie.Error), (["p"], TypeError), (sp.Abs(q) + p ** 2, ValueError),
+    (sp.I * q + p ** 2, ValueError), ("p^2/2 + q\0", ValueError), (float("nan"), ValueError),
+])
+def test_bad_systems(H, exc):
+    with pytest.raises(exc):
+        hamlie.System(H)
+
+
+def test_bad_formula_types():
+    s = hamlie.System("p^2/2 - cos(q)")
+    with pytest.raises(TypeError):
+        s.bracket(1.5j, "p")
+    with pytest.raises(TypeError):
+        s.check([None])
+    with pytest.raises(hamlie.Error) as info:
+        s.bracket("q*D", "p")  # the step is not a function of the phase variables
+    assert info.value.position == 2
