@@ -260,10 +260,12 @@ PyObject *System_errors(SystemObject *self, PyObject *args, PyObject *kw)
     hl_analysis *A = NULL;
     system_lock(self);
     hl_status st;
-    Py_BEGIN_ALLOW_THREADS st = make_scheme(&s, name, 0, map, eqs, self->sys, &err);
+    Py_BEGIN_ALLOW_THREADS
+    st = make_scheme(&s, name, 0, map, eqs, self->sys, &err);
     if (st == HL_OK)
         st = hl_analysis_compute(&A, &opts, s, self->sys, &err);
-    Py_END_ALLOW_THREADS PyObject *r = st == HL_OK ? analysis_dict(A) : raise_hl_error(&err, st);
+    Py_END_ALLOW_THREADS
+    PyObject *r = st == HL_OK ? analysis_dict(A) : raise_hl_error(&err, st);
     hl_analysis_free(A);
     hl_scheme_free(s);
     system_unlock(self);

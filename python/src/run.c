@@ -36,15 +36,17 @@ static int adaptive(const run_args *a)
 
 typedef struct sink {
     long cap, rows;
-    int n2, nobs;
+    int n2, nobs, overflow;
     double *t, *z, *H, *sigma, *obs;
 } sink;
 
 static int sink_row(const hl_run_row *row, void *arg)
 {
     sink *s = arg;
-    if (s->rows >= s->cap) /* cannot happen when cap is rows_for's count */
+    if (s->rows >= s->cap) { /* cannot happen when cap is rows_for's count */
+        s->overflow = 1;
         return HL_ELIMIT;
+    }
     long k = s->rows++;
     s->t[k] = row->t;
     memcpy(s->z + k * s->n2, row->z, (size_t)s->n2 * sizeof(double));
@@ -153,7 +155,7 @@ static PyObject *run_double(hl_system *sys, const run_args *a, runner *r, long n
 {
     int n2 = 2 * hl_system_ndof(sys), ad = adaptive(a);
     double z0[2 * 64];
-    sink s = {rows_for(n, a->every), 0, n2, a->nobs, NULL, NULL, NULL, NULL, NULL};
+    sink s = {rows_for(n, a->every), 0, n2, a->nobs, 0, NULL, NULL, NULL, NULL, NULL};
     PyObject *t = new_array(1, s.cap, 1, &s.t), *z = new_array(2, s.cap, n2, &s.z),
              *H = new_array(1, s.cap, 1, &s.H), *sg = new_array(1, s.cap, 1, &s.sigma),
              *obs = new_array(2, s.cap, a->nobs, &s.obs), *res = NULL;
@@ -163,7 +165,8 @@ static PyObject *run_double(hl_system *sys, const run_args *a, runner *r, long n
     double wall = 0;
     if (t == NULL || z == NULL || H == NULL || sg == NULL || obs == NULL)
         goto done;
-    Py_BEGIN_ALLOW_THREADS st = prefix_init(hl_run_init_values(z0, sys, a->init, err), err);
+    Py_BEGIN_ALLOW_THREADS
+    st = prefix_init(hl_run_init_values(z0, sys, a->init, err), err);
     if (st == HL_OK)
         st = prefix_init(hl_run_check_start(r->run, z0, err), err);
     double w0 = now();
@@ -172,8 +175,13 @@ static PyObject *run_double(hl_system *sys, const run_args *a, runner *r, long n
                                   err)
                 : hl_run_fixed(r->run, z0, a->dt, a->t, a->every, sink_row, &s, &stats, err);
     wall = now() - w0;
-    Py_END_ALLOW_THREADS if (st != HL_OK)
-    {
+    Py_END_ALLOW_THREADS
+    if (s.overflow) {
+        PyErr_Format(PyExc_RuntimeError, "the runner delivered more than the %ld rows expected",
+                     s.cap);
+        goto done;
+    }
+    if (st != HL_OK) {
         raise_hl_error(err, st);
         goto done;
     }
@@ -248,8 +256,8 @@ static PyObject *run_arb(hl_system *sys, const run_args *a, runner *r, long n, h
     memset(&stats, 0, sizeof stats);
     hl_status st;
     double wall;
-    Py_BEGIN_ALLOW_THREADS st =
-        prefix_init(hl_run_init_values_arb(z0, sys, a->init, prec, err), err);
+    Py_BEGIN_ALLOW_THREADS
+    st = prefix_init(hl_run_init_values_arb(z0, sys, a->init, prec, err), err);
     if (st == HL_OK)
         st = prefix_init(hl_run_check_start_arb(r->run, z0, prec, err), err);
     double w0 = now();
@@ -257,7 +265,8 @@ static PyObject *run_arb(hl_system *sys, const run_args *a, runner *r, long n, h
         st = hl_run_adaptive_arb(r->run, z0, a->digits, a->T_text, n, a->every, arb_row, &as,
                                  &stats, err);
     wall = now() - w0;
-    Py_END_ALLOW_THREADS PyObject *res = NULL;
+    Py_END_ALLOW_THREADS
+    PyObject *res = NULL;
     if (st != HL_OK)
         raise_hl_error(err, st);
     else
@@ -383,12 +392,16 @@ PyObject *System_run(SystemObject *self, PyObject *args, PyObject *kw)
     long n = 0;
     hl_status st;
     system_lock(self);
-    Py_BEGIN_ALLOW_THREADS st = hl_run_nsteps(&n, a.dt, a.t, &err);
+    Py_BEGIN_ALLOW_THREADS
+    st = hl_run_nsteps(&n, a.dt, a.t, &err);
     if (st == HL_OK)
         st = build(&r, &a, self->sys, &err);
-    Py_END_ALLOW_THREADS if (st != HL_OK) raise_hl_error(&err, st);
-    else res = a.have_digits ? run_arb(self->sys, &a, &r, n, &err)
-                             : run_double(self->sys, &a, &r, n, &err);
+    Py_END_ALLOW_THREADS
+    if (st != HL_OK)
+        raise_hl_error(&err, st);
+    else
+        res = a.have_digits ? run_arb(self->sys, &a, &r, n, &err)
+                            : run_double(self->sys, &a, &r, n, &err);
     runner_free(&r);
     system_unlock(self);
     free(a.observe);

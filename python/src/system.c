@@ -13,7 +13,8 @@
 void system_lock(SystemObject *self)
 {
     if (!PyThread_acquire_lock(self->lock, NOWAIT_LOCK)) {
-        Py_BEGIN_ALLOW_THREADS PyThread_acquire_lock(self->lock, WAIT_LOCK);
+        Py_BEGIN_ALLOW_THREADS
+        PyThread_acquire_lock(self->lock, WAIT_LOCK);
         Py_END_ALLOW_THREADS
     }
 }
@@ -118,9 +119,10 @@ static PyObject *System_new(PyTypeObject *type, PyObject *args, PyObject *kw)
         hl_error err;
         hl_error_clear(&err);
         hl_status st;
-        Py_BEGIN_ALLOW_THREADS st = hl_system_new(&self->sys, &spec, &err);
-        Py_END_ALLOW_THREADS if (st != HL_OK)
-        {
+        Py_BEGIN_ALLOW_THREADS
+        st = hl_system_new(&self->sys, &spec, &err);
+        Py_END_ALLOW_THREADS
+        if (st != HL_OK) {
             self->sys = NULL;
             Py_CLEAR(self);
             raise_hl_error(&err, st);
@@ -205,9 +207,10 @@ static PyObject *System_generator(SystemObject *self, PyObject *unused)
     system_lock(self);
     hl_alg *v = hl_alg_vec_new(2 * N, ctx);
     hl_status st;
-    Py_BEGIN_ALLOW_THREADS st = hl_generator(v, v + N, sys, &err);
-    Py_END_ALLOW_THREADS PyObject *r =
-        st == HL_OK ? alg_list(v, 2 * N, sys) : raise_hl_error(&err, st);
+    Py_BEGIN_ALLOW_THREADS
+    st = hl_generator(v, v + N, sys, &err);
+    Py_END_ALLOW_THREADS
+    PyObject *r = st == HL_OK ? alg_list(v, 2 * N, sys) : raise_hl_error(&err, st);
     hl_alg_vec_free(v, 2 * N, ctx);
     system_unlock(self);
     return r;
@@ -238,10 +241,12 @@ static PyObject *System_bracket(SystemObject *self, PyObject *args)
     system_lock(self);
     hl_alg *f = hl_alg_vec_new(3, ctx);
     hl_status st;
-    Py_BEGIN_ALLOW_THREADS st = read_phase_all(f, t, 2, sys, &err);
+    Py_BEGIN_ALLOW_THREADS
+    st = read_phase_all(f, t, 2, sys, &err);
     if (st == HL_OK)
         st = hl_bracket(&f[2], &f[0], &f[1], sys, &err);
-    Py_END_ALLOW_THREADS PyObject *r = st == HL_OK ? alg_str(&f[2], sys) : raise_hl_error(&err, st);
+    Py_END_ALLOW_THREADS
+    PyObject *r = st == HL_OK ? alg_str(&f[2], sys) : raise_hl_error(&err, st);
     hl_alg_vec_free(f, 3, ctx);
     system_unlock(self);
     return r;
@@ -321,9 +326,10 @@ static PyObject *System_check(SystemObject *self, PyObject *args)
                 0,
                 0};
     hl_status st;
-    Py_BEGIN_ALLOW_THREADS st = compute_checks(&c, text, n, sys, &err);
-    Py_END_ALLOW_THREADS PyObject *r =
-        st == HL_OK ? checks_result(&c, n, sys) : raise_hl_error(&err, st);
+    Py_BEGIN_ALLOW_THREADS
+    st = compute_checks(&c, text, n, sys, &err);
+    Py_END_ALLOW_THREADS
+    PyObject *r = st == HL_OK ? checks_result(&c, n, sys) : raise_hl_error(&err, st);
     hl_alg_vec_free(c.f, n + 1, ctx);
     hl_alg_vec_free(c.withH, n, ctx);
     hl_alg_vec_free(c.inv, n * n, ctx);
@@ -349,10 +355,12 @@ static PyObject *System_canonical(SystemObject *self, PyObject *args)
     system_lock(self);
     hl_alg *img = hl_alg_vec_new(m, ctx), *br = hl_alg_vec_new(m * m, ctx);
     hl_status st;
-    Py_BEGIN_ALLOW_THREADS st = hl_system_read_map(img, sys, map, &err);
+    Py_BEGIN_ALLOW_THREADS
+    st = hl_system_read_map(img, sys, map, &err);
     if (st == HL_OK)
         st = hl_check_canonical(&canonical, br, img, sys, &err);
-    Py_END_ALLOW_THREADS PyObject *r = NULL;
+    Py_END_ALLOW_THREADS
+    PyObject *r = NULL;
     if (st != HL_OK)
         raise_hl_error(&err, st);
     else if ((r = PyList_New(m)) != NULL)
@@ -387,11 +395,12 @@ static PyObject *System_lie_terms(SystemObject *self, PyObject *args)
     system_lock(self);
     hl_alg *t = hl_alg_vec_new(order + 2, ctx); /* t[order + 1]: phi */
     hl_status st;
-    Py_BEGIN_ALLOW_THREADS st = hl_system_read_phase(&t[order + 1], sys, phi_text, &err);
+    Py_BEGIN_ALLOW_THREADS
+    st = hl_system_read_phase(&t[order + 1], sys, phi_text, &err);
     if (st == HL_OK)
         st = hl_lie_terms_watched(t, &t[order + 1], order, sys, check_signals_progress, NULL, &err);
-    Py_END_ALLOW_THREADS PyObject *r =
-        st == HL_OK ? alg_list(t, order + 1, sys) : raise_hl_error(&err, st);
+    Py_END_ALLOW_THREADS
+    PyObject *r = st == HL_OK ? alg_list(t, order + 1, sys) : raise_hl_error(&err, st);
     hl_alg_vec_free(t, order + 2, ctx);
     system_unlock(self);
     return r;
