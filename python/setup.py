@@ -11,7 +11,8 @@ import numpy
 from setuptools import Extension, setup
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-ROOT = os.path.dirname(HERE)
+# the clone: python/.. (or $HAMLIE_SOURCE_DIR when python/ was copied elsewhere)
+ROOT = os.environ.get("HAMLIE_SOURCE_DIR", os.path.dirname(HERE))
 
 
 def build_tree():

@@ -21,9 +21,9 @@ class Check:
     """`hamlie check`: .integral[i] (bool), .bracket_with_H[i], .involution,
     .involution_brackets (Matrix), .rank, .rank_with_H."""
 
-    def __init__(self, d, texts, read):
+    def __init__(self, d, formulas, read):
         self.raw = d
-        self.formulas = texts
+        self.formulas = formulas  # as SymPy expressions
         self.integral = list(d["integral"])
         self.bracket_with_H = [read(s) for s in d["bracket_with_H"]]
         self.involution = d["involution"]
@@ -39,6 +39,15 @@ class Check:
     def __repr__(self):
         return (f"Check(integral={self.integral}, involution={self.involution}, "
                 f"rank={self.rank}, rank_with_H={self.rank_with_H})")
+
+    def _repr_latex_(self):
+        rows = [f"\\{{{sp.latex(f)}, H\\}} = {sp.latex(b)}"
+                f"\\quad \\text{{{'integral' if ok else 'not an integral'}}}"
+                for f, b, ok in zip(self.formulas, self.bracket_with_H, self.integral)]
+        rows.append(f"\\text{{involution: {'yes' if self.involution else 'no'}; "
+                    f"rank {self.rank}, with }} H \\text{{: {self.rank_with_H}}}")
+        return "$\\begin{aligned}" + " \\\\ ".join("& " + r for r in rows) + \
+            "\\end{aligned}$"
 
 
 class Errors:

@@ -124,7 +124,8 @@ class System:
         if isinstance(integrals, (str, sp.Basic)):
             integrals = [integrals]
         texts = [self._text(f, "an integral") for f in integrals]
-        return Check(self._c.check(texts), texts, self._read)
+        d = self._c.check(texts)
+        return Check(d, [self._read(self._c.read(t)) for t in texts], self._read)
 
     def canonical(self, map):
         """Is a map "X = ...; P = ..." canonical for every value of the step?

@@ -76,6 +76,7 @@ def test_check_kepler_integrals():
     assert same(c.involution_brackets[0, 1], 0)
     assert same(c.involution_brackets[0, 2], poisson(L, x * px, [x, y], [px, py]))
     assert c.rank == 3 and c.rank_with_H == 3
+    assert c._repr_latex_().count("not an integral") == 1
     j = cli("check", "-H", "(px^2+py^2)/2 - 1/sqrt(x^2+y^2)", "--integral", "x*py - y*px",
             "--integral", "H", "--integral", "x*px")
     assert [i["is_integral"] for i in j["integrals"]] == c.integral
