@@ -92,7 +92,7 @@ static int pays_with_cache(long breakeven, long uses, int kept)
         return 0;
     if (uses >= breakeven || kept)
         return 1;
-    return hl_jit_cache_dir()[0] != '\0' && uses >= breakeven / CACHE_RUNS_AHEAD;
+    return hl_jit_cache_on() && uses >= breakeven / CACHE_RUNS_AHEAD;
 }
 
 /* compile_ns / saved_ns, or LONG_MAX if nothing is saved or the quotient

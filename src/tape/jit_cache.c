@@ -54,11 +54,11 @@ static const struct {
 
 static struct {
     pthread_mutex_t lock;
-    int resolved; /* dir looked up */
-    char *dir;    /* NULL: off or unusable */
+    char *wanted; /* the directory the environment names (NULL: off) */
+    char *dir;    /* it if usable, else NULL */
     int noticed;  /* the unwritable-directory notice was printed */
     hl_jit_cache_stats stats;
-} cache = {PTHREAD_MUTEX_INITIALIZER, 0, NULL, 0, {0, 0, 0, 0}};
+} cache = {PTHREAD_MUTEX_INITIALIZER, NULL, NULL, 0, {0, 0, 0, 0}};
 
 /* ---- the key ------------------------------------------------------------------ */
 
@@ -208,35 +208,41 @@ static void notice(const char *dir, const char *why)
             dir, why);
 }
 
-/* The directory, or NULL if the cache is off or unusable.  Under lock. */
+/* The directory, or NULL if the cache is off or unusable.  Under lock.
+ * Looked up again when the environment names another one (tests and
+ * benchmarks change it), then made if missing. */
 static const char *cache_dir_locked(void)
 {
-    if (!cache.resolved) {
-        cache.resolved = 1;
-        cache.dir = cache_off() ? NULL : dir_from_env();
-        if (cache.dir != NULL && (make_dirs(cache.dir) != 0 || access(cache.dir, W_OK) != 0)) {
-            notice(cache.dir, strerror(errno));
-            free(cache.dir);
-            cache.dir = NULL;
-        }
+    char *want = cache_off() ? NULL : dir_from_env();
+    if (want == NULL ? cache.wanted == NULL
+                     : cache.wanted != NULL && strcmp(want, cache.wanted) == 0) {
+        free(want);
+        return cache.dir;
+    }
+    free(cache.wanted), free(cache.dir);
+    cache.wanted = want;
+    cache.dir = want ? hl_xstrdup(want) : NULL;
+    if (cache.dir != NULL && (make_dirs(cache.dir) != 0 || access(cache.dir, W_OK) != 0)) {
+        notice(cache.dir, strerror(errno));
+        free(cache.dir);
+        cache.dir = NULL;
     }
     return cache.dir;
 }
 
-const char *hl_jit_cache_dir(void)
+int hl_jit_cache_on(void)
 {
     pthread_mutex_lock(&cache.lock);
-    const char *d = cache_dir_locked();
+    int on = cache_dir_locked() != NULL;
     pthread_mutex_unlock(&cache.lock);
-    return d ? d : "";
+    return on;
 }
 
 void hl_jit_cache_reset(void)
 {
     pthread_mutex_lock(&cache.lock);
-    free(cache.dir);
-    cache.dir = NULL;
-    cache.resolved = 0;
+    free(cache.dir), free(cache.wanted);
+    cache.dir = cache.wanted = NULL;
     cache.noticed = 0;
     pthread_mutex_unlock(&cache.lock);
 }

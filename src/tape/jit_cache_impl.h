@@ -45,10 +45,10 @@ int hl_jit_host_isa(void);
  * (jit_cache_id.c; appended to b). */
 void hl_jit_generator_id(hl_buf *b);
 
-/* The cache directory in use ("" if off or not writable); for messages. */
-const char *hl_jit_cache_dir(void);
+/* 1 if the cache is on and its directory usable (made if missing). */
+int hl_jit_cache_on(void);
 
-/* Forget the directory and the notices (tests change the environment). */
+/* Forget the directory and the notice (tests). */
 void hl_jit_cache_reset(void);
 
 #ifdef HAMLIE_HAVE_GCCJIT
