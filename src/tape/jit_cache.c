@@ -22,6 +22,7 @@
  * ~/.cache/hamlie; HAMLIE_CACHE=off turns the cache off.  If it cannot be
  * written the process compiles in memory as before, with one notice. */
 #define _GNU_SOURCE
+#include <dirent.h>
 #include <dlfcn.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -412,9 +413,98 @@ static hl_jit_code *load(const entry *e, const char *entry_name)
         count(&cache.stats.rejected);
         return NULL;
     }
+    utimensat(AT_FDCWD, e->keyfile, NULL, 0); /* used now: the bound keeps it */
     hl_jit_code *code = hl_xcalloc(1, sizeof *code);
     code->so = so;
     return code;
+}
+
+/* ---- the bound ------------------------------------------------------------------
+ * At most $HAMLIE_CACHE_MAX entries (default CACHE_MAX_ENTRIES, some 60 MB
+ * at 20-60 KB an entry); past it the least recently used go: a hit
+ * refreshes its key file's time.  Checked after each store, which costs
+ * 100 ms or more anyway; the scan, about a millisecond a thousand entries.
+ * A process that loses an entry it was about to load compiles again. */
+#define CACHE_MAX_ENTRIES 2000
+
+typedef struct aged {
+    char *stem; /* <dir>/<hash>, without .key */
+    struct timespec used;
+} aged;
+
+static int less_recent(const void *a, const void *b)
+{
+    const struct timespec *x = &((const aged *)a)->used, *y = &((const aged *)b)->used;
+    if (x->tv_sec != y->tv_sec)
+        return x->tv_sec < y->tv_sec ? -1 : 1;
+    return (x->tv_nsec > y->tv_nsec) - (x->tv_nsec < y->tv_nsec);
+}
+
+static long max_entries(void)
+{
+    const char *s = getenv("HAMLIE_CACHE_MAX");
+    char *end;
+    long n = s ? strtol(s, &end, 10) : 0;
+    return s && *s && *end == '\0' && n > 0 ? n : CACHE_MAX_ENTRIES;
+}
+
+/* The entries of dir (by their key files), with the time each was used. */
+static aged *list_entries(const char *dir, size_t *n)
+{
+    DIR *d = opendir(dir);
+    aged *v = NULL;
+    size_t cap = 0;
+    *n = 0;
+    struct dirent *de;
+    while (d != NULL && (de = readdir(d)) != NULL) {
+        size_t len = strlen(de->d_name);
+        if (len != 20 || strcmp(de->d_name + 16, ".key") != 0)
+            continue;
+        hl_buf b;
+        hl_buf_init(&b);
+        hl_buf_printf(&b, "%s/%.16s", dir, de->d_name);
+        char *stem = hl_buf_take(&b);
+        hl_buf_printf(&b, "%s.key", stem);
+        struct stat st;
+        int ok = stat(b.s, &st) == 0;
+        hl_buf_clear(&b);
+        if (!ok) {
+            free(stem);
+            continue;
+        }
+        if (*n == cap)
+            v = hl_xrealloc(v, (cap = cap ? 2 * cap : 64) * sizeof *v);
+        v[(*n)++] = (aged){stem, st.st_mtim};
+    }
+    if (d != NULL)
+        closedir(d);
+    return v;
+}
+
+static void prune(const entry *e)
+{
+    char *dir = hl_xstrdup(e->keyfile);
+    *strrchr(dir, '/') = '\0';
+    size_t n;
+    aged *v = list_entries(dir, &n);
+    long max = max_entries();
+    if ((long)n > max) {
+        qsort(v, n, sizeof *v, less_recent);
+        for (size_t i = 0; i < n - (size_t)max; i++) {
+            hl_buf b;
+            hl_buf_init(&b);
+            hl_buf_printf(&b, "%s.key", v[i].stem);
+            unlink(b.s); /* the key first: no key vouches for a missing object */
+            hl_buf_clear(&b);
+            hl_buf_printf(&b, "%s.so", v[i].stem);
+            unlink(b.s);
+            hl_buf_clear(&b);
+        }
+    }
+    for (size_t i = 0; i < n; i++)
+        free(v[i].stem);
+    free(v);
+    free(dir);
 }
 
 /* A unique temporary file beside final (its name in *tmp), or -1. */
@@ -507,6 +597,7 @@ static hl_jit_code *compile_and_load(const entry *e, hl_jit_site site, hl_jit_bu
     if (rc == 0) {
         count(&cache.stats.stored);
         code = load(e, entry_name);
+        prune(e);
     }
     /* not kept (no cache, unwritable, or replaced meanwhile by a damaged
      * file): this process still gets its code */

@@ -2,7 +2,8 @@
  * HAMLIE_CACHE_DIR: a cold compilation writes an entry, a warm one loads it
  * without compiling (the counters), and both give the interpreter's bits;
  * a truncated, zeroed or foreign object and a key file whose text differs
- * are recompiled (and the entry repaired), never loaded; two processes
+ * are recompiled (and the entry repaired), never loaded; past
+ * HAMLIE_CACHE_MAX entries the least recently used goes; two processes
  * filling the same entry at once both get right code and leave a valid
  * entry; an unusable directory and HAMLIE_CACHE=off compile in memory.
  * The cost model: a kept program compiles for a single use, a program not
@@ -174,6 +175,30 @@ static void test_damage(hl_pool *P)
     CHECK(stats().hits == s0.hits + 1);
 }
 
+/* At most HAMLIE_CACHE_MAX entries: the least recently used goes. */
+static void test_bound(hl_pool *P)
+{
+    char cmd[256];
+    snprintf(cmd, sizeof cmd, "rm -f '%s'/*", dir);
+    CHECK(system(cmd) == 0);
+    setenv("HAMLIE_CACHE_MAX", "2", 1);
+    char p[8][128];
+    CHECK(jit_matches_interpreter(P, 3));
+    /* file times tick in milliseconds (coarse clocks): apart by more */
+    CHECK(jit_matches_interpreter(P, 4));
+    usleep(50000);
+    CHECK(jit_matches_interpreter(P, 3)); /* a hit: 3 used after 4 */
+    usleep(50000);
+    hl_jit_cache_stats s0 = stats();
+    CHECK(jit_matches_interpreter(P, 5)); /* a third entry: 4 goes */
+    CHECK(files("*.key", p, 8) == 2 && files("*.so", p, 8) == 2);
+    CHECK(jit_matches_interpreter(P, 3));
+    CHECK(stats().hits == s0.hits + 1 && stats().compiles == s0.compiles + 1);
+    CHECK(jit_matches_interpreter(P, 4)); /* gone: compiled again */
+    CHECK(stats().compiles == s0.compiles + 2);
+    unsetenv("HAMLIE_CACHE_MAX");
+}
+
 /* Two processes compile variant 2 into the empty entry at once. */
 static void test_concurrent(hl_pool *P)
 {
@@ -246,6 +271,7 @@ static void test_taylor(hl_pool *P)
  * use; never for none. */
 static void test_cost(hl_pool *P)
 {
+    CHECK(jit_matches_interpreter(P, 0)); /* kept (compiled if it was not) */
     hl_tape *kept = make_tape(P, 0), *fresh = make_tape(P, 7);
     long b = hl_tape_compile_breakeven(fresh, HL_COMPILE_EVAL);
     CHECK(b > 1000 && b < LONG_MAX);
@@ -278,6 +304,7 @@ int main(void)
     test_cold_warm(P);
     test_damage(P);
     test_concurrent(P);
+    test_bound(P);
     test_taylor(P);
     test_cost(P);
     test_no_cache(P);
