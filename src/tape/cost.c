@@ -16,6 +16,7 @@
  * reproducible. */
 #include <limits.h>
 
+#include "tape/jit_cache_impl.h"
 #include "tape/tape_impl.h"
 
 /* hl_tape_jit: GCC's fixed cost (driver, passes, assembler and loader,
@@ -53,6 +54,47 @@
  * hence the margin. */
 #define TAYLOR_BREAKEVEN_STEPS 1000000L
 
+/* With the disk cache of compiled code (jit_cache.c) a compilation serves
+ * the runs after this one too.  A hit costs a dlopen and a check of the
+ * file (well under a millisecond, bench/tape_jit.c "cache"), so compiling
+ * then pays from the first use.  A miss with a usable cache compiles when
+ * this run makes a CACHE_RUNS_AHEAD-th of the break-even's uses: the
+ * code is counted to serve that many runs of the same program (a rerun,
+ * another --t, a parameter study), and the first run pays for them.
+ * Kepler to t = 1e4 at tol 1e-15 (55 000 Taylor steps) then compiles on
+ * its first run (100-300 ms more; see the NOTE in jit_cache.c on what
+ * writing the file adds) and runs native from the second on. */
+#define CACHE_RUNS_AHEAD 20
+
+/* 1 if the cache holds the tape's code for this kind of use.  The Taylor
+ * recursion is keyed by its order, which the interpreter has laid the
+ * tape out for (t->ts = order + 1) by the time a run asks. */
+static int kept_in_cache(const hl_tape *t, hl_compile_kind kind)
+{
+    if (kind == HL_COMPILE_TAYLOR && t->ts <= 1)
+        return 0;
+    hl_buf inputs;
+    hl_buf_init(&inputs);
+    if (kind == HL_COMPILE_TAYLOR)
+        hl_jit_inputs_taylor(&inputs, t, t->ts - 1);
+    else
+        hl_jit_inputs_tape(&inputs, t);
+    int has = hl_jit_cache_has(kind == HL_COMPILE_TAYLOR ? HL_JIT_SITE_TAYLOR : HL_JIT_SITE_EVAL,
+                               &inputs);
+    hl_buf_clear(&inputs);
+    return has;
+}
+
+/* The choice for a run of uses, given the break-even without a cache. */
+static int pays_with_cache(long breakeven, long uses, int kept)
+{
+    if (breakeven == LONG_MAX || uses <= 0)
+        return 0;
+    if (uses >= breakeven || kept)
+        return 1;
+    return hl_jit_cache_on() && uses >= breakeven / CACHE_RUNS_AHEAD;
+}
+
 /* compile_ns / saved_ns, or LONG_MAX if nothing is saved or the quotient
  * does not fit. */
 static long uses_to_repay(double compile_ns, double saved_ns)
@@ -85,12 +127,24 @@ int hl_tape_compile_pays(const hl_tape *t, hl_compile_kind kind, long uses)
     if (t == NULL)
         return 0;
     long breakeven = hl_tape_compile_breakeven(t, kind);
-    return breakeven < LONG_MAX && uses >= breakeven;
+    if (breakeven == LONG_MAX || uses <= 0)
+        return 0;
+    return pays_with_cache(breakeven, uses, uses < breakeven && kept_in_cache(t, kind));
 }
 
 int hl_newton_compile_pays(const hl_newton *nw, long solves)
 {
-    return nw != NULL && hl_tape_jit_available() && solves >= NEWTON_BREAKEVEN_SOLVES;
+    if (nw == NULL || !hl_tape_jit_available() || solves <= 0)
+        return 0;
+    int kept = 0;
+    if (solves < NEWTON_BREAKEVEN_SOLVES) {
+        hl_buf inputs;
+        hl_buf_init(&inputs);
+        hl_jit_inputs_newton(&inputs, nw);
+        kept = hl_jit_cache_has(HL_JIT_SITE_NEWTON, &inputs);
+        hl_buf_clear(&inputs);
+    }
+    return pays_with_cache(NEWTON_BREAKEVEN_SOLVES, solves, kept);
 }
 
 long hl_tape_jit_breakeven(const hl_tape *t)

@@ -16,7 +16,22 @@
 #include <string.h>
 
 #include "base/buf.h"
+#include "tape/jit_cache_impl.h"
 #include "tape/jit_impl.h"
+
+int hl_jit_host_isa(void)
+{
+#if defined(__x86_64__) && defined(__GNUC__)
+    __builtin_cpu_init();
+    int v3 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
+             __builtin_cpu_supports("bmi2");
+    int v4 = v3 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+             __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
+    return v4 ? 4 : v3 ? 3 : 0;
+#else
+    return 0;
+#endif
+}
 
 #ifdef HAMLIE_HAVE_GCCJIT
 
@@ -62,7 +77,7 @@ gcc_jit_function *hl_jit_import_sincos(jit *J)
  * Ctrl-C handler (hamlie run stops cleanly on it) was gone after the first
  * compilation.  They are put back after each compilation; the signals that
  * stop a job are held meanwhile and reach the caller's handler after. */
-static gcc_jit_result *compile(gcc_jit_context *c)
+int hl_jit_run_compiler(gcc_jit_context *c, const char *path, gcc_jit_result **res)
 {
     static const int sigs[] = {SIGINT, SIGHUP, SIGTERM, SIGPIPE, SIGCHLD};
     enum { NSIGS = sizeof sigs / sizeof sigs[0] };
@@ -75,11 +90,18 @@ static gcc_jit_result *compile(gcc_jit_context *c)
     for (int i = 0; i < NSIGS; i++)
         sigaction(sigs[i], NULL, &saved[i]);
     pthread_sigmask(SIG_BLOCK, &hold, &prev);
-    gcc_jit_result *res = gcc_jit_context_compile(c);
+    int failed;
+    if (path != NULL) {
+        gcc_jit_context_compile_to_file(c, GCC_JIT_OUTPUT_KIND_DYNAMIC_LIBRARY, path);
+        failed = gcc_jit_context_get_first_error(c) != NULL;
+    } else {
+        *res = gcc_jit_context_compile(c);
+        failed = *res == NULL;
+    }
     for (int i = 0; i < NSIGS; i++)
         sigaction(sigs[i], &saved[i], NULL);
     pthread_sigmask(SIG_SETMASK, &prev, NULL);
-    return res;
+    return failed ? -1 : 0;
 }
 
 /* Extra options from $HL_JIT_FLAGS (space-separated), for experiments such
@@ -96,31 +118,22 @@ static void add_env_flags(gcc_jit_context *c)
     free(copy);
 }
 
-/* The vector instructions of the machine that runs the code (libgccjit
- * does not understand -march=native).  Contraction into FMA stays off, so
- * the results are those of plain SSE2 code; the wider registers let GCC
- * pair the recurrences' independent products, which bench/taylor_flow.c
- * shows on the longer recursions (Kepler's). */
-static int add_host_isa(gcc_jit_context *c)
+/* The vector instructions of the machine that runs the code, as the
+ * -march level given to GCC (libgccjit does not understand -march=native).
+ * Contraction into FMA stays off, so the results are those of plain SSE2
+ * code; the wider registers let GCC pair the recurrences' independent
+ * products, which bench/taylor_flow.c shows on the longer recursions
+ * (Kepler's). */
+static void add_host_isa(gcc_jit_context *c)
 {
-#if defined(__x86_64__) && defined(__GNUC__)
-    __builtin_cpu_init();
-    int v3 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
-             __builtin_cpu_supports("bmi2");
-    int v4 = v3 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-             __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
-    if (v4)
+    int level = hl_jit_host_isa();
+    if (level == 4)
         gcc_jit_context_add_command_line_option(c, "-march=x86-64-v4");
-    else if (v3)
+    else if (level == 3)
         gcc_jit_context_add_command_line_option(c, "-march=x86-64-v3");
-    return v3; /* FMA instructions */
-#else
-    (void)c;
-    return 0;
-#endif
 }
 
-hl_status hl_jit_context_new(gcc_jit_context **c, int opt, int *fma, hl_error *err)
+hl_status hl_jit_context_new(gcc_jit_context **c, int opt, int host_isa, hl_error *err)
 {
     *c = gcc_jit_context_acquire();
     if (*c == NULL)
@@ -130,8 +143,8 @@ hl_status hl_jit_context_new(gcc_jit_context **c, int opt, int *fma, hl_error *e
     /* its diagnostics are not ours to print; the first comes back in err */
     gcc_jit_context_set_bool_print_errors_to_stderr(*c, 0);
     gcc_jit_context_add_command_line_option(*c, "-ffp-contract=off");
-    if (fma != NULL)
-        *fma = add_host_isa(*c);
+    if (host_isa)
+        add_host_isa(*c);
     add_env_flags(*c); /* last, so that the caller's options win */
     return HL_OK;
 }
@@ -143,25 +156,6 @@ void hl_jit_init(jit *J, gcc_jit_context *c, const hl_tape *t)
     J->dbl = gcc_jit_context_get_type(c, GCC_JIT_TYPE_DOUBLE);
     J->dblp = gcc_jit_type_get_pointer(J->dbl);
     J->sqrt = gcc_jit_context_get_builtin_function(c, "__builtin_sqrt");
-}
-
-hl_status hl_jit_compile(gcc_jit_result **res, void **code, gcc_jit_context *c, const char *entry,
-                         const char *what, hl_error *err)
-{
-    *res = compile(c);
-    *code = *res != NULL ? gcc_jit_result_get_code(*res, entry) : NULL;
-    hl_status status = HL_OK;
-    if (*code == NULL) {
-        const char *why = gcc_jit_context_get_first_error(c);
-        status = hl_error_set(err, HL_EUNSUP, NULL, -1, 0, "libgccjit failed on %s%s%s", what,
-                              why ? ": " : "", why ? why : "");
-        if (*res != NULL)
-            gcc_jit_result_release(*res);
-        *res = NULL;
-    }
-    /* the result owns the code; the context is no longer needed */
-    gcc_jit_context_release(c);
-    return status;
 }
 
 int hl_tape_jit_available(void)

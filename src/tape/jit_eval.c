@@ -22,6 +22,7 @@
 
 #include "base/buf.h"
 #include "rules/unroll.h"
+#include "tape/jit_cache_impl.h"
 #include "tape/jit_impl.h"
 #include "tape/tape_impl.h"
 
@@ -450,9 +451,10 @@ static int watch_shape(const hl_tape *t)
     return t->nout >= 2 && t->nout == t->nin;
 }
 
-/* The functions the tape's shape allows, in context c. */
-static void build(gcc_jit_context *c, const hl_tape *t)
+/* The functions the tape's shape allows, in context c (hl_jit_build_fn). */
+static void build(gcc_jit_context *c, const void *arg)
 {
+    const hl_tape *t = arg;
     jit J = {0};
     hl_jit_init(&J, c, t);
     J.loc = hl_xcalloc((size_t)t->nregs + 1, sizeof *J.loc);
@@ -468,30 +470,28 @@ static void build(gcc_jit_context *c, const hl_tape *t)
 
 hl_status hl_tape_jit(hl_tape *t, hl_error *err)
 {
-    gcc_jit_context *c;
-    hl_status st = hl_jit_context_new(&c, 2, NULL, err);
-    if (st != HL_OK)
-        return st;
-    build(c, t);
-    gcc_jit_result *res;
-    void *code;
-    st = hl_jit_compile(&res, &code, c, "hl_jit_eval", "the tape", err);
+    hl_buf inputs;
+    hl_buf_init(&inputs);
+    hl_jit_inputs_tape(&inputs, t);
+    hl_jit_code *code;
+    hl_status st =
+        hl_jit_obtain(&code, HL_JIT_SITE_EVAL, &inputs, build, t, "hl_jit_eval", "the tape", err);
+    hl_buf_clear(&inputs);
     if (st != HL_OK)
         return st;
     hl_tape_jit_clear(t);
-    t->jit_result = res;
-    *(void **)&t->jit_fn = code;
+    t->jit_result = code;
+    *(void **)&t->jit_fn = hl_jit_code_sym(code, "hl_jit_eval");
     if (iter_shape(t))
-        *(void **)&t->jit_iter = gcc_jit_result_get_code(res, "hl_jit_iter");
+        *(void **)&t->jit_iter = hl_jit_code_sym(code, "hl_jit_iter");
     if (watch_shape(t))
-        *(void **)&t->jit_watch = gcc_jit_result_get_code(res, "hl_jit_watch");
+        *(void **)&t->jit_watch = hl_jit_code_sym(code, "hl_jit_watch");
     return HL_OK;
 }
 
 void hl_tape_jit_clear(hl_tape *t)
 {
-    if (t->jit_result != NULL)
-        gcc_jit_result_release(t->jit_result);
+    hl_jit_code_free(t->jit_result);
     t->jit_result = NULL;
     t->jit_fn = NULL;
     t->jit_iter = NULL;

@@ -29,19 +29,19 @@ typedef struct jit {
 
 /* A context at optimization level opt: no debug information, diagnostics
  * kept for the caller (not printed), no contraction into FMA, then
- * $HL_JIT_FLAGS.  With fma != NULL also the host's vector instructions
- * (*fma = 1 if they include FMA).  HL_EUNSUP if libgccjit cannot start. */
-hl_status hl_jit_context_new(gcc_jit_context **c, int opt, int *fma, hl_error *err);
+ * $HL_JIT_FLAGS.  With host_isa also the host's vector instructions
+ * (hl_jit_host_isa).  HL_EUNSUP if libgccjit cannot start. */
+hl_status hl_jit_context_new(gcc_jit_context **c, int opt, int host_isa, hl_error *err);
 
 /* J's types and builtins in context c, for tape t (J->loc, J->read: the
  * caller's). */
 void hl_jit_init(jit *J, gcc_jit_context *c, const hl_tape *t);
 
-/* Compile c and look up the function entry; releases c.  On success *res
- * owns the code; else HL_EUNSUP with libgccjit's first error, "libgccjit
- * failed on <what>: ...". */
-hl_status hl_jit_compile(gcc_jit_result **res, void **code, gcc_jit_context *c, const char *entry,
-                         const char *what, hl_error *err);
+/* Compiles c, leaving the caller's signal handlers in place: into the
+ * shared object path, or with path NULL in memory (*res).  0 on success,
+ * -1 with libgccjit's first error in c.  The compile sites go through
+ * jit_cache.c's hl_jit_obtain, which calls this. */
+int hl_jit_run_compiler(gcc_jit_context *c, const char *path, gcc_jit_result **res);
 
 /* The libm function name (one double argument), the one a rule's point
  * function calls (pow, atan2: two arguments; sqrt: GCC's builtin), and

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "base/buf.h"
+#include "tape/jit_cache_impl.h"
 #include "tape/jit_impl.h"
 #include "tape/tape_impl.h"
 
@@ -439,15 +440,10 @@ static void build_newton(nj *N, const hl_newton *nw)
     free(N->uv), free(N->u);
 }
 
-hl_status hl_newton_jit(hl_newton *nw, hl_error *err)
+/* The solve of nw in context c (hl_jit_build_fn). */
+static void build(gcc_jit_context *c, const void *arg)
 {
-    if (nw->m > 16)
-        return hl_error_set(err, HL_EUNSUP, NULL, -1, 0,
-                            "compiled Newton: %d unknowns (at most 16)", nw->m);
-    gcc_jit_context *c;
-    hl_status st = hl_jit_context_new(&c, 2, NULL, err);
-    if (st != HL_OK)
-        return st;
+    const hl_newton *nw = arg;
     nj N = {.c = c, .m = nw->m, .nx = nw->nx, .ntapes = nw->Z != NULL ? 4 : 3};
     N.dbl = gcc_jit_context_get_type(c, GCC_JIT_TYPE_DOUBLE);
     N.intt = gcc_jit_context_get_type(c, GCC_JIT_TYPE_INT);
@@ -462,21 +458,31 @@ hl_status hl_newton_jit(hl_newton *nw, hl_error *err)
     build_newton(&N, nw);
     for (int k = 0; k < N.ntapes; k++)
         free(N.T[k].loc), free(N.T[k].read);
-    gcc_jit_result *res;
-    void *fn;
-    st = hl_jit_compile(&res, &fn, c, "hl_jit_newton", "Newton", err);
+}
+
+hl_status hl_newton_jit(hl_newton *nw, hl_error *err)
+{
+    if (nw->m > 16)
+        return hl_error_set(err, HL_EUNSUP, NULL, -1, 0,
+                            "compiled Newton: %d unknowns (at most 16)", nw->m);
+    hl_buf inputs;
+    hl_buf_init(&inputs);
+    hl_jit_inputs_newton(&inputs, nw);
+    hl_jit_code *code;
+    hl_status st = hl_jit_obtain(&code, HL_JIT_SITE_NEWTON, &inputs, build, nw, "hl_jit_newton",
+                                 "Newton", err);
+    hl_buf_clear(&inputs);
     if (st != HL_OK)
         return st;
     hl_newton_jit_clear(nw);
-    nw->jit_result = res;
-    *(void **)&nw->jit_fn = fn;
+    nw->jit_result = code;
+    *(void **)&nw->jit_fn = hl_jit_code_sym(code, "hl_jit_newton");
     return HL_OK;
 }
 
 void hl_newton_jit_clear(hl_newton *nw)
 {
-    if (nw->jit_result != NULL)
-        gcc_jit_result_release(nw->jit_result);
+    hl_jit_code_free(nw->jit_result);
     nw->jit_result = NULL;
     nw->jit_fn = NULL;
 }

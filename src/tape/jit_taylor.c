@@ -18,6 +18,7 @@
 
 #include "base/buf.h"
 #include "rules/unroll.h"
+#include "tape/jit_cache_impl.h"
 #include "tape/jit_impl.h"
 #include "tape/tape_impl.h"
 
@@ -286,17 +287,17 @@ static void build_recursion(gem *E, int order)
     gcc_jit_block_end_with_void_return(E->blk, NULL);
 }
 
-hl_status hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tape *t, int order,
-                             hl_error *err)
+typedef struct recursion {
+    const hl_tape *t;
+    int order;
+} recursion;
+
+/* void hl_native(double *R) in context c (hl_jit_build_fn). */
+static void build(gcc_jit_context *c, const void *arg)
 {
-    gcc_jit_context *c;
-    /* -O1 as emit_c.c: -O2's scheduling costs much compile time on these
-     * long blocks for little gain */
-    int fma; /* the host's vector instructions: GCC pairs the independent products */
-    hl_status status = hl_jit_context_new(&c, 1, &fma, err);
-    if (status != HL_OK)
-        return status;
-    gem E = {.em = {&g_ops}, .c = c, .t = t, .S = order + 1};
+    const recursion *r = arg;
+    const hl_tape *t = r->t;
+    gem E = {.em = {&g_ops}, .c = c, .t = t, .S = r->order + 1};
     E.dbl = gcc_jit_context_get_type(c, GCC_JIT_TYPE_DOUBLE);
     gcc_jit_param *prm = gcc_jit_context_new_param(c, NULL, gcc_jit_type_get_pointer(E.dbl), "R");
     E.fun = gcc_jit_context_new_function(c, NULL, GCC_JIT_FUNCTION_EXPORTED,
@@ -306,24 +307,36 @@ hl_status hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tap
     E.blk = gcc_jit_function_new_block(E.fun, "body");
     E.coef = hl_xcalloc((size_t)t->nregs * (size_t)E.S, sizeof *E.coef);
     E.keep = hl_xcalloc(2 * ((size_t)t->ncode + 1), sizeof *E.keep);
-    build_recursion(&E, order);
+    build_recursion(&E, r->order);
     free(E.coef);
     free(E.keep);
     free(E.v);
-    gcc_jit_result *res;
-    void *f;
-    status = hl_jit_compile(&res, &f, c, "hl_native", "the recursion", err);
+}
+
+/* The site's options (-O1: -O2's scheduling costs much compile time on
+ * these long blocks for little gain; the host's vector instructions, so
+ * that GCC pairs the independent products) are in jit_cache.c's table. */
+hl_status hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tape *t, int order,
+                             hl_error *err)
+{
+    hl_buf inputs;
+    hl_buf_init(&inputs);
+    hl_jit_inputs_taylor(&inputs, t, order);
+    hl_jit_code *code;
+    recursion r = {t, order};
+    hl_status status = hl_jit_obtain(&code, HL_JIT_SITE_TAYLOR, &inputs, build, &r, "hl_native",
+                                     "the recursion", err);
+    hl_buf_clear(&inputs);
     if (status != HL_OK)
         return status;
-    *result = res;
-    *(void **)fn = f;
+    *result = code;
+    *(void **)fn = hl_jit_code_sym(code, "hl_native");
     return HL_OK;
 }
 
 void hl_tape_jit_release(void *result)
 {
-    if (result != NULL)
-        gcc_jit_result_release(result);
+    hl_jit_code_free(result);
 }
 
 #else /* no libgccjit */
