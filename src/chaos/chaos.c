@@ -226,6 +226,15 @@ static void start_state(chaos_state *s, const hl_chaos *c, const double *z0, con
     s->logsum = s->fli = 0; /* measured from |delta0| */
 }
 
+/* The k-th output time: k every, or t_end when that is at or past it (a
+ * k every that misses t_end by rounding, 3 * 0.3 < 0.9, is t_end: no
+ * second row a rounding error before the last). */
+static double next_output(int k, double every, double t_end)
+{
+    double tk = k * every;
+    return every > 0 && tk < t_end * (1 - 1e-12) ? tk : t_end;
+}
+
 hl_status hl_chaos_run(hl_chaos *c, const double *z0, const double *delta0, double t_end,
                        double every, hl_chaos_fn fn, void *arg, hl_chaos_result *res, hl_error *err)
 {
@@ -235,7 +244,7 @@ hl_status hl_chaos_run(hl_chaos *c, const double *z0, const double *delta0, doub
     int n = c->n;
     chaos_state s;
     start_state(&s, c, z0, delta0, t_end);
-    double next_out = every > 0 && every < t_end ? every : t_end;
+    double next_out = next_output(1, every, t_end);
     double h = CHUNK_FIRST < next_out ? CHUNK_FIRST : next_out;
     st = first_chunk(c, &s, h, err);
     hl_flow *flow = NULL;
@@ -254,7 +263,7 @@ hl_status hl_chaos_run(hl_chaos *c, const double *z0, const double *delta0, doub
                 st = hl_error_set(err, HL_ESTOP, NULL, -1, 0, "stopped at t = %g", s.t);
                 break;
             }
-            next_out = ++k * every < t_end ? k * every : t_end;
+            next_out = next_output(++k, every, t_end);
         }
         double t1 = s.t + h < next_out ? s.t + h : next_out;
         long before = hl_flow_nsteps(flow);

@@ -45,6 +45,9 @@ const char cmd_chaos_help[] =
     "Example: hamlie chaos -H '(px^2+py^2)/2 + (x^2+y^2)/2 + x^2*y - y^3/3' \\\n"
     "           --init x=0,y=-0.1,px=0.56803755858823,py=0 --t 1e3\n";
 
+/* The CSV is held in memory until the run is done (nothing half-written). */
+#define CHAOS_MAX_ROWS 1e7
+
 typedef struct chaos_opts {
     const char *init, *t_s, *tol_s, *every_s, *delta;
     double t, tol, every;
@@ -96,6 +99,9 @@ static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
             return cli_usage(cmd, "--every must be positive, not '%s'", c->every_s);
         if (o->format == CLI_JSON)
             return cli_usage(cmd, "--every writes CSV: not with --json");
+        if (c->t / c->every > CHAOS_MAX_ROWS)
+            return cli_usage(cmd, "--every %s would write more than %g rows: a larger one, please",
+                             c->every_s, CHAOS_MAX_ROWS);
     }
     return -1;
 }

@@ -50,6 +50,12 @@ has_line "MEGNO Y = 10"
 has_line "MEGNO mean <Y> = 5"
 has_line "maximal Lyapunov exponent ~ 1"
 
+# rows at 0.3, 0.6 and 0.9, though 3 * 0.3 < 0.9 in double
+run 0 chaos -H 'p^2/2 - q^2/2' --init q=0,p=0 --t 0.9 --every 0.3
+[ "$(wc -l < "$tmp/out")" -eq 4 ] && ok || bad "rows at 0.3, 0.6, 0.9: $(cat "$tmp/out")"
+run 2 chaos -H 'p^2/2 - q^2/2' --init q=0,p=0 --t 1e3 --every 1e-5
+err_has "more than"
+
 run 2 chaos -H 'p^2/2 - cos(q)' --t 10
 err_has "missing --init"
 run 2 chaos -H 'p^2/2 - cos(q)' --init q=1,z=0 --t 10
