@@ -48,6 +48,9 @@ void hl_section_free(hl_section *s); /* NULL is a no-op */
 int hl_section_coord(const hl_section *s);    /* j: the section is q_j = c */
 int hl_section_momentum(const hl_section *s); /* N + j: the index solved for */
 double hl_section_value(const hl_section *s); /* c */
+hl_system *hl_section_system(const hl_section *s);
+hl_event_dir hl_section_direction(const hl_section *s);
+double hl_section_energy(const hl_section *s);
 
 /* z (2N, q then p): q_j is set to c and p_j solved from H = E (above);
  * the other values are the caller's. */
@@ -58,6 +61,19 @@ hl_status hl_section_complete(hl_section *s, double *z, hl_error *err);
  * allowed interval of q_o found. */
 hl_status hl_section_spread(hl_section *s, double *zs, int M, double *lo, double *hi,
                             hl_error *err);
+
+/* Points listed by the user, as CSV text: a header naming the columns (the
+ * variables other than the solved momentum p_j; q_j may be a column, whose
+ * values must then be c), one point a line, '#' lines and blank lines
+ * skipped.  Each point is completed (above).  *zs (malloc'd, *n points of
+ * 2N) on success.  Errors point into text (err->src = text, err->pos the
+ * byte): an unknown or repeated name, a missing column, a value that is
+ * not a finite number, a line with too few or too many values, no points,
+ * more than HL_SECTION_MAX_POINTS; a point without a real solution names
+ * its line. */
+#define HL_SECTION_MAX_POINTS 1000000
+hl_status hl_section_read_points(hl_section *s, const char *text, double **zs, int *n,
+                                 hl_error *err);
 
 /* How an orbit is integrated: tol > 0 the adaptive Taylor run (crossings
  * on its polynomials), else the run's fixed-step scheme with step dt (the

@@ -86,6 +86,19 @@ double hl_section_value(const hl_section *s)
     return s->c;
 }
 
+hl_system *hl_section_system(const hl_section *s)
+{
+    return s->sys;
+}
+hl_event_dir hl_section_direction(const hl_section *s)
+{
+    return s->dir;
+}
+double hl_section_energy(const hl_section *s)
+{
+    return s->E;
+}
+
 /* H(z) - E with z[i] = v */
 static double excess(hl_section *s, double *z, int i, double v)
 {
