@@ -219,50 +219,69 @@ static double line_min(hl_section *s, int o, double v, double w, double *at)
     return line_excess(s, o, *at);
 }
 
-/* The allowed interval [*a, *b] around the line's minimum. */
+/* Of the runs of samples with f <= 0 in f[0..n-1], the bounded one (not
+ * touching an end) holding the least f: 1 with [*l, *r], else 0.
+ * *unbounded = 1 if a run touches an end. */
+static int bounded_run(const double *f, int n, int *l, int *r, int *unbounded)
+{
+    int found = 0;
+    double least = INFINITY;
+    *unbounded = 0;
+    for (int k = 0; k < n;) {
+        if (!(f[k] <= 0)) {
+            k++;
+            continue;
+        }
+        int a = k, lo = k;
+        for (; k < n && f[k] <= 0; k++)
+            lo = f[k] < f[lo] ? k : lo;
+        if (a == 0 || k == n)
+            *unbounded = 1;
+        else if (f[lo] < least)
+            least = f[lo], *l = a, *r = k - 1, found = 1;
+    }
+    return found;
+}
+
+/* The allowed interval [*a, *b]: the well (bounded part of H <= E on the
+ * line) holding the least H, from scans on [-R, R] with R growing. */
 static int allowed_interval(hl_section *s, int o, double *a, double *b, hl_error *err)
 {
     static double f[SCAN_POINTS];
     double best = INFINITY, best_v = 0, best_w = 1;
+    int unbounded = 0;
     for (double R = 1; R <= SCAN_R_MAX; R *= 10) {
         double step = 2 * R / (SCAN_POINTS - 1);
-        int kmin = 0;
+        int kmin = 0, l, r;
         for (int k = 0; k < SCAN_POINTS; k++) {
             f[k] = line_excess(s, o, -R + step * k);
             kmin = f[k] < f[kmin] ? k : kmin;
         }
-        if (f[kmin] < best)
+        if (f[kmin] < best && kmin > 0 && kmin < SCAN_POINTS - 1)
             best = f[kmin], best_v = -R + step * kmin, best_w = step;
-        if (!(f[kmin] <= 0))
-            continue;
-        int l = kmin, r = kmin;
-        while (l > 0 && f[l - 1] <= 0)
-            l--;
-        while (r < SCAN_POINTS - 1 && f[r + 1] <= 0)
-            r++;
-        if ((l == 0 || r == SCAN_POINTS - 1) && R < SCAN_R_MAX)
-            continue; /* the region may go on: a wider scan */
-        if (l == 0 || r == SCAN_POINTS - 1)
-            return hl_error_set(err, HL_EDOM, NULL, -1, 0,
-                                "the allowed region H <= E along %s (at %s = %g, momenta 0) "
-                                "reaches |%s| = %g: unbounded? give the points (--init-file)",
-                                var_name(s->sys, o), var_name(s->sys, s->j), s->c,
-                                var_name(s->sys, o), SCAN_R_MAX);
-        *a = edge(s, o, -R + step * l, -R + step * (l - 1));
-        *b = edge(s, o, -R + step * r, -R + step * (r + 1));
-        return HL_OK;
+        if (bounded_run(f, SCAN_POINTS, &l, &r, &unbounded)) {
+            *a = edge(s, o, -R + step * l, -R + step * (l - 1));
+            *b = edge(s, o, -R + step * r, -R + step * (r + 1));
+            return HL_OK;
+        }
     }
     double at = best_v, m = isfinite(best) ? line_min(s, o, best_v, best_w, &at) : INFINITY;
-    if (m <= 0) { /* a region narrower than the scan's spacing */
+    if (m <= 0) { /* a well narrower than the scan's spacing */
         *a = edge(s, o, at, at - best_w);
         *b = edge(s, o, at, at + best_w);
         return HL_OK;
     }
+    const char *q = var_name(s->sys, o);
+    if (unbounded)
+        return hl_error_set(err, HL_EDOM, NULL, -1, 0,
+                            "no allowed region around a minimum: at E = %.17g, H <= E along %s "
+                            "(at %s = %g, momenta 0) only out to |%s| = %g (H unbounded below "
+                            "there?); give the points (--init-file)",
+                            s->E, q, var_name(s->sys, s->j), s->c, q, SCAN_R_MAX);
     return hl_error_set(err, HL_EDOM, NULL, -1, 0,
                         "no allowed region: E = %.17g is below the minimum of H on the section "
                         "(H >= %.10g along %s at %s = %g, momenta 0; the least at %s = %.6g)",
-                        s->E, s->E + m, var_name(s->sys, o), var_name(s->sys, s->j), s->c,
-                        var_name(s->sys, o), at);
+                        s->E, s->E + m, q, var_name(s->sys, s->j), s->c, q, at);
 }
 
 hl_status hl_section_spread(hl_section *s, double *zs, int M, double *lo, double *hi, hl_error *err)
