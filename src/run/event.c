@@ -65,6 +65,16 @@ hl_status hl_run_surface(hl_run_surface_info *out, hl_system *sys, const char *s
     return HL_OK;
 }
 
+static void event_clear(hl_run *r)
+{
+    hl_event_free(r->ev);
+    hl_tape_free(r->ev_tape);
+    free(r->ev_z);
+    r->ev = NULL;
+    r->ev_tape = NULL;
+    r->ev_z = NULL;
+}
+
 hl_status hl_run_event(hl_run *r, const char *surface, hl_event_dir dir, long stop_after,
                        hl_run_crossing_fn fn, void *arg, hl_error *err)
 {
@@ -81,7 +91,7 @@ hl_status hl_run_event(hl_run *r, const char *surface, hl_event_dir dir, long st
         hl_tape_free(g);
         return st;
     }
-    hl_run_event_clear_(r);
+    event_clear(r);
     r->ev_tape = g;
     r->ev = ev;
     r->ev_fn = fn;
@@ -90,16 +100,6 @@ hl_status hl_run_event(hl_run *r, const char *surface, hl_event_dir dir, long st
     int n2 = 2 * r->N;
     r->ev_z = hl_xcalloc((size_t)(4 * n2), sizeof *r->ev_z);
     return HL_OK;
-}
-
-void hl_run_event_clear_(hl_run *r)
-{
-    hl_event_free(r->ev);
-    hl_tape_free(r->ev_tape);
-    free(r->ev_z);
-    r->ev = NULL;
-    r->ev_tape = NULL;
-    r->ev_z = NULL;
 }
 
 int hl_run_event_order(const hl_run *r)

@@ -93,7 +93,9 @@ void hl_run_free(hl_run *r)
     hl_tape_free(r->obs);
     hl_tape_free(r->fused);
     hl_tape_free(r->vf);
-    hl_run_event_clear_(r);
+    hl_event_free(r->ev); /* hl_run_event's */
+    hl_tape_free(r->ev_tape);
+    free(r->ev_z);
     free(r->names), free(r->outs), free(r->z), free(r->ref), free(r->vals), free(r->zs);
     free(r);
 }

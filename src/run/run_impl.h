@@ -41,7 +41,6 @@ struct hl_run {
 #define HL_RUN_EV_STOP 0x4556
 
 const hl_expr *hl_run_resolve_(hl_system *sys, const hl_expr *e);
-void hl_run_event_clear_(hl_run *r);
 /* A crossing at (t, z): counted in s, delivered; 0, the callback's
  * non-zero return, or HL_RUN_EV_STOP. */
 int hl_run_crossing_(hl_run *r, double t, const double *z, hl_run_stats *s);

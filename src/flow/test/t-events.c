@@ -187,8 +187,9 @@ static void stop_and_order(void)
     CHECK(hl_tape_new(&t3, g3, 1, names3, 3, &err) == HL_OK);
     CHECK(hl_event_new(&e3, t3, HL_EVENT_UP, &err) == HL_OK);
     CHECK(hl_flow_set_event(fl, e3, on_cross, &s, &err) == HL_EINVAL);
-    CHECK(hl_event_new(&e3, f, HL_EVENT_UP, &err) == HL_EINVAL); /* two outputs */
     hl_event_free(e3);
+    CHECK(hl_event_new(&e3, f, HL_EVENT_UP, &err) == HL_EINVAL); /* two outputs */
+    CHECK(e3 == NULL);
     hl_tape_free(t3);
     hl_event_free(ev);
     hl_flow_free(fl);

@@ -19,6 +19,7 @@
 
 typedef struct got {
     long n;
+    int n2; /* the state's size (0: 4) */
     double t[1024], H[1024], z[1024][4];
 } got;
 
@@ -28,7 +29,7 @@ static int keep(const hl_run_crossing *c, void *arg)
     if (g->n < 1024) {
         g->t[g->n] = c->t;
         g->H[g->n] = c->H;
-        memcpy(g->z[g->n], c->z, 4 * sizeof *c->z);
+        memcpy(g->z[g->n], c->z, (size_t)(g->n2 ? g->n2 : 4) * sizeof *c->z);
     }
     CHECK(c->i == g->n);
     g->n++;
@@ -42,6 +43,7 @@ static void adaptive_oscillator(void)
         return;
     static got g;
     memset(&g, 0, sizeof g);
+    g.n2 = 2;
     hl_error err;
     hl_run_stats s;
     /* x = cos t: upwards (p = -sin t > 0) at 3 pi/2 + 2 pi k */
@@ -55,6 +57,7 @@ static void adaptive_oscillator(void)
     CHECK_MSG(worst < 1e-12, "adaptive oscillator crossings: %.3g", worst);
     /* stop after 3: HL_OK, event_stop, t_crossing */
     memset(&g, 0, sizeof g);
+    g.n2 = 2;
     CHECK(hl_run_event(f.run, "x = 0", HL_EVENT_BOTH, 3, keep, &g, &err) == HL_OK);
     CHECK(hl_run_adaptive(f.run, f.z0, 1e-15, 1, 100, 1, NULL, NULL, &s, &err) == HL_OK);
     CHECK(g.n == 3 && s.crossings == 3 && s.event_stop);
@@ -76,6 +79,7 @@ static double fixed_error(hl_run *run, double dt, long *n)
 {
     static got g;
     memset(&g, 0, sizeof g);
+    g.n2 = 2;
     hl_error err;
     hl_run_stats s;
     double z0[2] = {1, 0};
