@@ -90,6 +90,14 @@ assert 3.5 < sv1 / sv2 < 4.5 and sv1 < 1e-3, (sv1, sv2)
 assert dr1 > 10 * sv1 and dr2 > 0 and 1.6 < dr1 / dr2 < 2.6, (dr1, dr2)
 " && ok || bad "scheme sections: sv $sv1 $sv2, euler $dr1 $dr2"
 
+# orbits that blow up (Euler escapes past E = 1/6): named, kept, drawn (the
+# figure's range clipped to the bulk of the points), exit status 1
+run 1 section -H "$HH" --energy 1/8 --surface x=0 --orbits 3 --crossings 200 --scheme euler \
+    --dt 0.01 --out "$tmp/eu.csv" --plot "$tmp/eufig"
+err_has "failed after"
+err_has "blow-up"
+[ -s "$tmp/eufig/section.png" ] && [ -s "$tmp/eu.csv" ] && ok || bad "no file or figure after failed orbits"
+
 # --init-file
 printf '# y, py on x = 0\ny,py\n0.1,0\n-0.2, 0.1\n\n' >"$tmp/pts.csv"
 run 0 section -H "$HH" --energy 1/8 --surface x=0 --init-file "$tmp/pts.csv" --crossings 5 --json
