@@ -42,6 +42,7 @@
 #include <arb.h>
 #include <float.h>
 #include "hamlie/error.h"
+#include "hamlie/event.h"
 #include "hamlie/tape.h"
 
 #ifdef __cplusplus
@@ -81,6 +82,15 @@ hl_status hl_flow_evolve(hl_flow *flow, double *t, double t1, double *z, hl_erro
 /* Called at each output time with the state there; a non-zero return stops
  * the run, and hl_flow_run returns that value. */
 typedef int (*hl_flow_fn)(double t, const double *z, void *arg);
+
+/* Events (event.h): from now on, hl_flow_evolve and hl_flow_run call fn at
+ * each crossing of ev's surface, located on the step's own polynomial to
+ * round-off, in the order of time with the output times (an output at the
+ * same time first).  The steps are not shortened for it.  A non-zero
+ * return stops the integration there and is returned: z and *t (evolve)
+ * are then the crossing's.  ev NULL: no events.  ev is borrowed.  HL_EINVAL
+ * if ev's dimension is not the flow's. */
+hl_status hl_flow_set_event(hl_flow *flow, hl_event *ev, hl_flow_fn fn, void *arg, hl_error *err);
 
 /* Start at (t0, z0) and call fn at ts[0..n-1], which must be monotone in
  * the direction of ts[n-1] - t0 (ts[0] may equal t0). */

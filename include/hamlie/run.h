@@ -37,6 +37,7 @@
 #include <arb.h>
 
 #include "hamlie/error.h"
+#include "hamlie/event.h"
 #include "hamlie/ham.h"
 #include "hamlie/scheme.h"
 
@@ -136,7 +137,54 @@ typedef struct hl_run_stats {
     double err_final;/* |z_n - z(t_n)|_2 at t */
     long ref_steps;  /* steps of the reference integrator */
     int failed;      /* the run stopped on an error */
+    long crossings;  /* events found (hl_run_event) */
+    double t_crossing; /* the time of the last one (0 if none) */
+    int event_stop;  /* the run stopped after hl_run_event's stop_after */
 } hl_run_stats;
+
+/* ---- events (event.h) ------------------------------------------------------
+ * A surface given as text: "g" (the surface g = 0) or "lhs = rhs" (g = lhs -
+ * rhs), a formula in the variables, H, and the parameters with values.
+ * hl_run_surface reads it (errors point into the text: a parse error, an
+ * unknown symbol, a g that does not depend on the state); var is the index
+ * (q_1..q_N, p_1..p_N) of the variable when the surface is "variable =
+ * constant" (x = 0, 0 = x), else -1, and value the constant. */
+typedef struct hl_run_surface_info {
+    const hl_expr *g;
+    int var;
+    double value;
+} hl_run_surface_info;
+
+hl_status hl_run_surface(hl_run_surface_info *out, hl_system *sys, const char *surface,
+                         hl_error *err);
+
+typedef struct hl_run_crossing {
+    long i;          /* 0, 1, ... in the order of time */
+    double t;
+    const double *z; /* 2N: the state at the crossing */
+    double H;
+} hl_run_crossing;
+
+typedef int (*hl_run_crossing_fn)(const hl_run_crossing *c, void *arg);
+
+/* From now on the runs of r deliver the crossings of the surface in the
+ * direction dir to fn (NULL: only counted), before the row that follows
+ * them.  The adaptive run finds them on the Taylor step's own polynomial,
+ * to round-off (hl_run_event_order 0); a fixed-step run on the cubic
+ * Hermite interpolant of each step, from the states and the exact vector
+ * field at its ends (order 4 local: hl_run_event_order 4), which adds its
+ * O(dt^4) to the scheme's own error.  After stop_after crossings (0:
+ * never) the run stops and returns HL_OK with stats->event_stop set (its
+ * rows and statistics up to the step or row before the last crossing,
+ * t_crossing its time); a non-zero return of fn stops the run and is
+ * returned.  A fixed-step run with events does not take the compiled
+ * fused loop.  Not for the Arb run (HL_EUNSUP). */
+hl_status hl_run_event(hl_run *r, const char *surface, hl_event_dir dir, long stop_after,
+                       hl_run_crossing_fn fn, void *arg, hl_error *err);
+
+/* 0: crossings on the Taylor polynomial (to round-off); 4: the Hermite
+ * cubic's local order for a fixed-step run. */
+int hl_run_event_order(const hl_run *r);
 
 /* z0: 2N values (not modified).  stats may be NULL; its z is the run's
  * (hl_run_state). */

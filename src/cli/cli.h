@@ -194,6 +194,8 @@ int cmd_check(int argc, char **argv, const cli_command *self);
 int cmd_canonical(int argc, char **argv, const cli_command *self);
 int cmd_lie(int argc, char **argv, const cli_command *self);
 int cmd_run(int argc, char **argv, const cli_command *self); extern const char cmd_run_help[];
+int cmd_section(int argc, char **argv, const cli_command *self);
+extern const char cmd_section_help[];
 int cmd_schemes(int argc, char **argv, const cli_command *self); extern const char cmd_schemes_help[];
 int cmd_plot(int argc, char **argv, const cli_command *self); extern const char cmd_plot_help[];
 int cmd_errors(int argc, char **argv, const cli_command *self); extern const char cmd_errors_help[];

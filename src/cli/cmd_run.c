@@ -52,6 +52,16 @@ const char cmd_run_help[] =
     "                       coordinates, |H - H0| and sigma (log), each observer\n"
     "                       (as hamlie plot does from the CSV; rows as --every)\n"
     "  --format png,svg,pdf the figures' formats (default png)\n"
+    "  --event G            record the crossings of the surface G = 0 (a formula in\n"
+    "                       the variables and H, or 'lhs = rhs'): crossing, t, the\n"
+    "                       state, H, in a CSV of their own (docs/commands.md)\n"
+    "  --direction D        up (G from < 0 to >= 0), down, or both (default)\n"
+    "  --event-stop N       stop the run at the N-th crossing\n"
+    "  --events-out FILE    the crossings' CSV (default with --out F: F.events.csv;\n"
+    "                       with --json alone they are in the JSON).  The adaptive\n"
+    "                       run locates them on its step polynomials to round-off, a\n"
+    "                       fixed-step run on each step's cubic Hermite interpolant\n"
+    "                       (local order 4)\n"
     "  --pairs, --param     as for every command\n"
     "  --json               print a JSON summary (with --out the CSV goes to FILE,\n"
     "                       without it no CSV is written)\n"
@@ -90,8 +100,10 @@ static void found_opt(void *arg, int k, const char *value)
         r->observe[r->nobserve++] = value;
     } else if (k == 11)
         r->no_ref = 1;
-    else
+    else if (k < 14)
         *(k == 12 ? &r->plot : &r->formats) = value;
+    else
+        run_events_found(r, k - 14, value);
 }
 
 static int parse_double(double *v, const char *s, const char *opt, const cli_command *cmd)
@@ -160,7 +172,7 @@ static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
         if (*r->every_s == '\0' || *end != '\0' || r->every < 1)
             return cli_usage(cmd, "--every wants a whole number >= 1, not '%s'", r->every_s);
     }
-    return -1;
+    return run_events_check(r, o, cmd);
 }
 
 /* Is this the adaptive integrator (--scheme lie with --tol, or without --dt)? */
@@ -341,6 +353,15 @@ static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts
             rc = CLI_ERROR;
         } else
             rc = want_csv ? run_close_out(&c, r, tmpname, 1, &s) : CLI_OK;
+        if (rc == CLI_OK)
+            rc = run_events_write(r, sys);
+        if (rc == CLI_OK && r->out == NULL && o->format != CLI_JSON) { /* stdout has the CSV */
+            hl_buf said;
+            hl_buf_init(&said);
+            run_events_say(&said, r, &s, run);
+            fputs(said.s != NULL ? said.s : "", stderr);
+            hl_buf_clear(&said);
+        }
         if (rc == CLI_OK && c.plot != NULL && o->format != CLI_JSON)
             fprintf(stderr, "hamlie: drew %d figure files in %s\n", figures, r->plot);
     }
@@ -366,9 +387,12 @@ static int do_run(hl_run *run, hl_system *sys, const run_opts *r, const cli_opts
             hl_json_kv_string(&j, "plot", r->plot);
             hl_json_kv_int(&j, "figure_files", figures);
             hl_json_kv_double(&j, "wall_time_s", wall);
+            run_events_json(&j, r, sys, run, &s);
             json_end(&j);
-        } else
+        } else {
             put_summary(&out, &s, &c, r->out);
+            run_events_say(&out, r, &s, run);
+        }
         rc = cli_emit(&out, CLI_OK);
     }
     if (rc == CLI_OK && stopped)
@@ -650,7 +674,7 @@ static int build(hl_run **run, hl_scheme **sch, hl_exact_flow **ex, hl_system *s
     for (int i = 0; st == HL_OK && i < r->nobserve; i++)
         if ((st = hl_run_observe(*run, r->observe[i], err)) != HL_OK)
             hl_error_prefix(err, "in --observe");
-    return st;
+    return st == HL_OK ? run_events_setup(*run, r, sys, err) : st;
 }
 
 int cmd_run(int argc, char **argv, const cli_command *self)
@@ -661,11 +685,24 @@ int cmd_run(int argc, char **argv, const cli_command *self)
     memset(&r, 0, sizeof r);
     memset(&o, 0, sizeof o);
     /* run's own options, in found_opt's order (--observe repeats) */
-    static const cli_own own[] = {
-        {"--scheme", 0}, {"--equations", 0}, {"--init", 0},  {"--out", 0},
-        {"--orders", 0}, {"--dt", 0},        {"--t", 0},     {"--tol", 0},
-        {"--every", 0},  {"--digits", 0},    {"--observe", CLI_OWN_REPEAT}, {"--no-reference", 1},
-        {"--plot", 0},   {"--format", 0}};
+    static const cli_own own[] = {{"--scheme", 0},
+                                  {"--equations", 0},
+                                  {"--init", 0},
+                                  {"--out", 0},
+                                  {"--orders", 0},
+                                  {"--dt", 0},
+                                  {"--t", 0},
+                                  {"--tol", 0},
+                                  {"--every", 0},
+                                  {"--digits", 0},
+                                  {"--observe", CLI_OWN_REPEAT},
+                                  {"--no-reference", 1},
+                                  {"--plot", 0},
+                                  {"--format", 0},
+                                  {"--event", 0},
+                                  {"--direction", 0},
+                                  {"--event-stop", 0},
+                                  {"--events-out", 0}};
     static const cli_begin_spec spec = {own, (int)(sizeof own / sizeof own[0]), found_opt,
                                         check_opts, CLI_OPT_H | CLI_OPT_MAP | CLI_OPT_ORDER | CLI_OPT_PROGRESS,
                                         64};
@@ -695,6 +732,7 @@ int cmd_run(int argc, char **argv, const cli_command *self)
     hl_system_free(sys);
     cli_opts_clear(&o);
     free(r.observe);
+    run_events_free(&r);
     free(av);
     return rc;
 }

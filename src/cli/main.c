@@ -27,8 +27,7 @@ static const cli_command commands[] = {
      "Print the evolution generator (paper §2)\n"
      "  g = sum_j dH/dp_j d/dq_j - dH/dq_j d/dp_j,  so that g(phi) = {phi, H}.\n"
      "\n"
-     "  -H, --hamiltonian F  the Hamiltonian (required)\n" COMMON_OPTIONS
-     "\n"
+     "  -H, --hamiltonian F  the Hamiltonian (required)\n" COMMON_OPTIONS "\n"
      "Exit status: 0 computed; 2 usage or input error.\n"
      "Example: hamlie generator -H '(p^2+x^2)/2'   prints  𝔤 = p ∂/∂x − x ∂/∂p\n"},
     {"bracket", cmd_bracket, "the Poisson bracket {A, B} of two functions",
@@ -38,8 +37,7 @@ static const cli_command commands[] = {
      "simplified.  In A and B, H names the Hamiltonian given with -H.\n"
      "\n"
      "  -H, --hamiltonian F  the Hamiltonian (needed when A or B mention H); with -H\n"
-     "                       the variables come from H, else from A and B\n" COMMON_OPTIONS
-     "\n"
+     "                       the variables come from H, else from A and B\n" COMMON_OPTIONS "\n"
      "Exit status: 0 computed; 2 usage or input error.\n"
      "Example: hamlie bracket -H '(px^2+py^2)/2 - 1/sqrt(x^2+y^2)' 'x*py - y*px' H\n"},
     {"check", cmd_check, "check integrals of motion, involution and independence",
@@ -51,8 +49,7 @@ static const cli_command commands[] = {
      "whether H is among them or functionally dependent on them.\n"
      "\n"
      "  -H, --hamiltonian F  the Hamiltonian (required)\n"
-     "  --integral F         a function to check (repeatable, at least one)\n" COMMON_OPTIONS
-     "\n"
+     "  --integral F         a function to check (repeatable, at least one)\n" COMMON_OPTIONS "\n"
      "Exit status: 0 every function is an integral of motion; 1 computed, but some\n"
      "function is not an integral; 2 usage or input error.  (Involution and\n"
      "independence are reported, not required.)\n"},
@@ -66,8 +63,7 @@ static const cli_command commands[] = {
      "variables are inferred from the right-hand sides of the map.\n"
      "\n"
      "  --map MAP            the images, separated by ';' (required)\n"
-     "  -H, --hamiltonian F  a Hamiltonian, if the map mentions H\n" COMMON_OPTIONS
-     "\n"
+     "  -H, --hamiltonian F  a Hamiltonian, if the map mentions H\n" COMMON_OPTIONS "\n"
      "Exit status: 0 the map is canonical; 1 computed, but it is not canonical;\n"
      "2 usage or input error.\n"
      "Example: hamlie canonical --map 'X = x + D*p; P = p - D*x'\n"},
@@ -82,14 +78,15 @@ static const cli_command commands[] = {
      "  --of F               the function phi (repeatable)\n"
      "  --terms              also print the terms g^k phi themselves\n"
      "  --progress, --quiet  progress on stderr from the start, or none (default:\n"
-     "                       after a second or two)\n" COMMON_OPTIONS
-     "\n"
+     "                       after a second or two)\n" COMMON_OPTIONS "\n"
      "A series whose terms grow past 2000000 terms is stopped with a message.\n"
      "Ctrl-C (SIGINT) stops it; nothing is printed.\n"
      "Exit status: 0 computed; 2 usage or input error (an order above the limit);\n"
      "130 interrupted.\n"
      "Example: hamlie lie -H 'p^2/2 - cos(q)' --order 6\n"},
     {"run", cmd_run, "run a scheme: a trajectory (CSV), its errors, observed orders", cmd_run_help},
+    {"section", cmd_section, "surfaces of section: orbits on H = E, their crossings (CSV, figure)",
+     cmd_section_help},
     {"schemes", cmd_schemes, "the catalog of one-step schemes", cmd_schemes_help},
     {"plot", cmd_plot, "figures of runs (CSV from hamlie run), compared", cmd_plot_help},
     {"errors", cmd_errors, "error analysis of a scheme: v_k, order, K(D) (paper §4)",

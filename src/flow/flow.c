@@ -7,6 +7,7 @@
 
 #include "base/buf.h"
 #include "flow/flow_impl.h"
+#include "hamlie/event.h"
 #include "hamlie/flow.h"
 
 struct hl_flow {
@@ -25,6 +26,10 @@ struct hl_flow {
     long n_probe;      /* and nsteps then */
     int native_done;   /* decided (compiled or not) */
     hl_flow_pace pace; /* to stop where the steps shrink forever */
+    hl_event *ev;      /* hl_flow_set_event's, or NULL */
+    hl_flow_fn ev_fn;
+    void *ev_arg;
+    double *ze; /* n: the state at a crossing */
 };
 
 hl_status hl_flow_new(hl_flow **out, hl_tape *f, double atol, double rtol, hl_error *err)
@@ -70,10 +75,25 @@ void hl_flow_free(hl_flow *fl)
     free(fl->zt);
     free(fl->dz);
     free(fl->fz);
+    free(fl->ze);
     free(fl);
 }
 
 int hl_flow_order(const hl_flow *fl) { return fl->p; }
+
+hl_status hl_flow_set_event(hl_flow *fl, hl_event *ev, hl_flow_fn fn, void *arg, hl_error *err)
+{
+    if (ev != NULL && hl_event_dim(ev) != fl->n)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                            "the event's surface has %d inputs, the flow's state %d values",
+                            hl_event_dim(ev), fl->n);
+    fl->ev = ev;
+    fl->ev_fn = fn;
+    fl->ev_arg = arg;
+    if (fl->ze == NULL)
+        fl->ze = hl_xcalloc((size_t)fl->n, sizeof *fl->ze);
+    return HL_OK;
+}
 
 void hl_flow_native_for(hl_flow *fl, double t_end)
 {
@@ -232,6 +252,51 @@ static int check_step(double *h, hl_flow *fl, double dir, double t, hl_error *er
     }
 }
 
+/* The state at tau on the current step's polynomial (an
+ * hl_event_state_fn): tau counts along the direction of integration. */
+typedef struct on_step {
+    const hl_flow *fl;
+    double dir;
+} on_step;
+
+static void step_state(double *z, double tau, void *arg)
+{
+    const on_step *o = arg;
+    horner(z, o->fl->coef, o->fl->n, o->fl->p, o->dir * tau);
+}
+
+/* What falls inside the current step of length h from (thi + tlo, z): the
+ * output times ts[*j..] and the crossings of the event, in the order of
+ * time (an output at a crossing's time first).  A non-zero return of a
+ * callback is returned; if it was the event's, z and the time are left at
+ * the crossing. */
+static int step_outputs(hl_flow *fl, int *j, double *thi, double *tlo, double *z, double h,
+                        double dir, const double *ts, int nts, hl_flow_fn fn, void *arg)
+{
+    on_step o = {fl, dir};
+    double ta = 0, ga = fl->ev != NULL ? hl_event_value(fl->ev, z) : 0, tc = h;
+    for (;;) {
+        int hit = fl->ev != NULL && hl_event_first(fl->ev, step_state, &o, ta, h, ga, &tc, fl->ze);
+        double lim = hit ? tc : h;
+        int st;
+        for (double tau; *j < nts && (tau = dir * ((ts[*j] - *thi) - *tlo)) <= lim; ++*j) {
+            horner(fl->zt, fl->coef, fl->n, fl->p, dir * tau);
+            if ((st = fn(ts[*j], fl->zt, arg)) != 0)
+                return st;
+        }
+        if (!hit)
+            return 0;
+        double tcross = *thi + (*tlo + dir * tc);
+        if (fl->ev_fn != NULL && (st = fl->ev_fn(tcross, fl->ze, fl->ev_arg)) != 0) {
+            memcpy(z, fl->ze, (size_t)fl->n * sizeof *z);
+            time_add(thi, tlo, dir * tc);
+            return st;
+        }
+        ta = tc;
+        ga = hl_event_value(fl->ev, fl->ze);
+    }
+}
+
 /* Integrate from (thi + tlo, z) to tend, calling fn at ts[0..n-1]. */
 static int drive(hl_flow *fl, double *thi, double *tlo, double *z, double tend, const double *ts,
                  int nts, hl_flow_fn fn, void *arg, hl_error *err)
@@ -256,11 +321,8 @@ static int drive(hl_flow *fl, double *thi, double *tlo, double *z, double tend, 
             return st;
         first = 0;
         int last = h == rem;
-        for (double tau; j < nts && (tau = dir * ((ts[j] - *thi) - *tlo)) <= h; j++) {
-            horner(fl->zt, fl->coef, fl->n, fl->p, dir * tau);
-            if ((st = fn(ts[j], fl->zt, arg)) != 0)
-                return st;
-        }
+        if ((st = step_outputs(fl, &j, thi, tlo, z, h, dir, ts, nts, fn, arg)) != 0)
+            return st;
         horner(fl->zt, fl->coef, fl->n, fl->p, dir * h);
         if (!all_finite(fl->zt, fl->n))
             return hl_error_set(err, HL_EDOM, NULL, -1, 0, "the solution is not finite at t = %.17g",

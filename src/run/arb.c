@@ -81,6 +81,11 @@ hl_status hl_run_adaptive_arb(hl_run *r, arb_srcptr z0, double digits, const cha
     if (!(digits >= 1) || digits > 10000)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
                             "digits must be between 1 and 10000 (digits = %g)", digits);
+    if (r->ev != NULL)
+        return hl_error_set(err, HL_EUNSUP, NULL, -1, 0,
+                            "events are not located by the Arb integrator (--digits) yet: "
+                            "use the double one (--tol), whose crossings are located to "
+                            "round-off on its steps' polynomials");
     if (n < 0 || n > 10000000)
         return hl_error_set(err, n < 0 ? HL_EINVAL : HL_ELIMIT, NULL, -1, 0,
                             "%ld outputs: between 0 and 1e7 in Arb", n);

@@ -24,7 +24,10 @@ typedef struct drive {
     double progress_spacing;
     double probe_t;          /* adaptive: a time between two rows (or NAN), */
     double *probe_z;         /* where the state goes for the next call */
+    int fixed;               /* a fixed-step run: events on the Hermite cubic */
 } drive;
+
+static int finish(hl_run *r, hl_run_stats *s, const drive *d, int st);
 
 /* Steps between two calls of the progress callback in a fixed-step run
  * (a call costs about as much as a step; a step at least 10 ns), and the
@@ -50,6 +53,13 @@ static int row(drive *d, long k, const double *ref)
     hl_run *r = d->r;
     hl_run_stats *s = d->s;
     int n2 = 2 * r->N;
+    if (d->fixed && r->ev != NULL) { /* the crossings before this row */
+        int e = hl_run_event_step_(r, k, d->dt, s);
+        if (e != 0) {
+            d->user = e == HL_RUN_EV_STOP ? 0 : e;
+            return e;
+        }
+    }
     hl_tape_eval_d(r->vals, r->z, r->obs);
     double t = (double)k * d->dt, sigma = NAN;
     if (!isfinite(r->vals[0]))
@@ -270,6 +280,7 @@ static int start(drive *d, hl_run *r, const double *z0, double dt, double t, lon
     stats_start(s, d->n);
     memcpy(r->z, z0, (size_t)(2 * r->N) * sizeof *z0);
     memcpy(r->ref, z0, (size_t)(2 * r->N) * sizeof *z0);
+    r->ev_stopped = 0;
     return HL_OK;
 }
 
@@ -284,13 +295,14 @@ hl_status hl_run_fixed(hl_run *r, const double *z0, double dt, double t, long ev
     int st = start(&d, r, z0, dt, t, every, fn, arg, s, err);
     if (st != HL_OK)
         return st;
+    d.fixed = 1;
     /* each run counts its steps (in messages) from 1 */
     if (r->stepper != NULL)
         hl_scheme_stepper_restart(r->stepper, 0);
     /* fused only where rows are sparse: a row every step or few gains
      * nothing from the loop, and would pay its compilation */
     int fused = !r->ref_on && r->stepper != NULL && (d.fn == NULL || d.every >= 16) &&
-                fused_ready(r, d.n);
+                r->ev == NULL && fused_ready(r, d.n);
     /* H and the observers are evaluated at every row, and at every step
      * unless fused: for long runs machine code (same results bit for bit)
      * pays for its compilation */
@@ -313,11 +325,33 @@ hl_status hl_run_fixed(hl_run *r, const double *z0, double dt, double t, long ev
             if ((st = advance(&d, k)) == HL_OK)
                 st = row(&d, k, NULL);
     }
-    s->failed = st != HL_OK && d.user == 0;
-    return d.user != 0 ? d.user : st;
+    return finish(r, s, &d, st);
+}
+
+/* The status of a run that ended with st: HL_OK if it stopped after its
+ * crossings (hl_run_event), the callback's own return, or st. */
+static int finish(hl_run *r, hl_run_stats *s, const drive *d, int st)
+{
+    s->event_stop = r->ev_stopped;
+    if (r->ev_stopped)
+        return HL_OK;
+    s->failed = st != HL_OK && d->user == 0;
+    return d->user != 0 ? d->user : st;
 }
 
 /* ---- the adaptive run --------------------------------------------------- */
+
+/* A crossing found by the flow on its step's polynomial. */
+static int adaptive_cross(double t, const double *z, void *arg)
+{
+    drive *d = arg;
+    int e = hl_run_crossing_(d->r, t, z, d->s);
+    if (e != 0) {
+        d->user = e == HL_RUN_EV_STOP ? 0 : e;
+        d->st = e;
+    }
+    return e;
+}
 
 static int adaptive_fn(double t, const double *z, void *arg)
 {
@@ -357,6 +391,10 @@ hl_status hl_run_adaptive(hl_run *r, const double *z0, double tol, double dt, do
         return st;
     if (r->jit) /* a long run compiles its recursion */
         hl_flow_native_for(fl, t);
+    if (r->ev != NULL && (st = hl_flow_set_event(fl, r->ev, adaptive_cross, &d, err)) != HL_OK) {
+        hl_flow_free(fl);
+        return st;
+    }
     st = row(&d, 0, NULL);
     double *zr = hl_xmalloc((size_t)(2 * r->N) * sizeof *zr);
     long cap = d.n < CHUNK ? d.n : CHUNK;
@@ -395,8 +433,7 @@ hl_status hl_run_adaptive(hl_run *r, const double *z0, double tol, double dt, do
     s->ref_steps = hl_flow_nsteps(fl);
     free(ts), free(zr);
     hl_flow_free(fl);
-    s->failed = st != HL_OK && d.user == 0;
-    return d.user != 0 ? d.user : st;
+    return finish(r, s, &d, st);
 }
 
 /* ---- observed orders ---------------------------------------------------- */

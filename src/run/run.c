@@ -26,6 +26,11 @@ static const hl_expr *resolve(hl_system *sys, const hl_expr *e)
     return r;
 }
 
+const hl_expr *hl_run_resolve_(hl_system *sys, const hl_expr *e)
+{
+    return resolve(sys, e);
+}
+
 hl_status hl_run_new(hl_run **out, hl_system *sys, const hl_scheme *scheme, hl_error *err)
 {
     *out = NULL;
@@ -88,6 +93,9 @@ void hl_run_free(hl_run *r)
     hl_tape_free(r->obs);
     hl_tape_free(r->fused);
     hl_tape_free(r->vf);
+    hl_event_free(r->ev); /* hl_run_event's */
+    hl_tape_free(r->ev_tape);
+    free(r->ev_z);
     free(r->names), free(r->outs), free(r->z), free(r->ref), free(r->vals), free(r->zs);
     free(r);
 }

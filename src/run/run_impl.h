@@ -26,7 +26,26 @@ struct hl_run {
     double *z, *ref, *vals;     /* state, reference, H and observers */
     hl_progress_fn progress;    /* the caller's, or NULL (hl_run_set_progress) */
     void *progress_arg;
+    hl_tape *ev_tape; /* the surface g (hl_run_event), or NULL */
+    hl_event *ev;
+    hl_run_crossing_fn ev_fn;
+    void *ev_arg;
+    long ev_stop;   /* stop after this many crossings (0: never) */
+    int ev_stopped; /* the last run stopped so */
+    double *ev_z;   /* 4 * 2N: z and f at the step's start, f at its end, a crossing */
+    double ev_g;    /* g at the step's start */
 };
+
+/* hl_run_crossing_'s return when the run has its ev_stop crossings: not a
+ * status (the run then returns HL_OK). */
+#define HL_RUN_EV_STOP 0x4556
+
+const hl_expr *hl_run_resolve_(hl_system *sys, const hl_expr *e);
+/* A crossing at (t, z): counted in s, delivered; 0, the callback's
+ * non-zero return, or HL_RUN_EV_STOP. */
+int hl_run_crossing_(hl_run *r, double t, const double *z, hl_run_stats *s);
+/* The crossings of the fixed step k-1 -> k (r->z is z_k); k = 0 starts. */
+int hl_run_event_step_(hl_run *r, long k, double dt, hl_run_stats *s);
 
 int hl_run_compile_(hl_run *r, hl_error *err);
 
