@@ -267,13 +267,13 @@ def figure(res, path):
                 ax.text(0.97, 0.97, "Arb: " + text, transform=ax.transAxes, ha="right",
                         va="top", fontsize=7, color="C5")
             ax.set_title("%s, t = %g" % (s, T))
-            ax.set_xlabel("integration time (ms)")
+            ax.set_xlabel("integration, CPU time (ms)")
             if j == 0:
                 ax.set_ylabel("final error max |z - z_exact|")
             ax.grid(True, which="major", alpha=0.3)
     axes[0][0].legend(fontsize=8, loc="lower left")
     fig.suptitle("work-precision: tol 1e-9 ... 1e-16, integration alone, best of several runs "
-                 "(bench/work_precision.sh)", fontsize=10)
+                 "(bench/work_precision.sh); the Arb runs: wall clock", fontsize=10)
     fig.tight_layout()
     fig.savefig(path, dpi=80)
 
