@@ -13,8 +13,9 @@
 #   HEYOKA_PREFIX (/opt/heyoka).
 # Writes out-dir/raw.csv (final states), out-dir/work-precision.csv (errors)
 # and out-dir/report.md (references, errors at equal tol, time ratios at
-# equal error); the figure to WP_FIG.  Integration alone is timed (the best
-# of reps runs); compiling (hamlie native, heyoka's JIT) is reported apart.
+# equal error); the figure to WP_FIG.  Integration alone is timed, in CPU
+# time (the best of reps runs); compiling (hamlie native, heyoka's JIT) is
+# reported apart.
 # The machine may be shared: compare within one run of this script.
 set -euo pipefail
 cd "$(dirname "$0")/.."
