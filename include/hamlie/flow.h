@@ -5,21 +5,29 @@
  * numeric Lie series exp(h g) z).  Each step computes the Taylor coefficients
  * z^[0..p] at the current point (hl_tape_taylor_ode_*), picks the step from
  * them and sums the polynomial.  Order and step follow Jorba & Zou,
- * Experiment. Math. 14 (2005) 99-117:
+ * Experiment. Math. 14 (2005) 99-117, as heyoka takes them:
  *
  *   p = ceil(-ln(tol) / 2) + 1,           tol = min(atol, rtol)
- *   eps = max(atol, rtol * |z|_inf)       (absolute + relative)
- *   h = min_{k = p-1, p} (eps / |z^[k]|_inf)^(1/k) * exp(-0.7 / (p - 1))
+ *   s = max(atol, rtol * |z|_inf) / tol   (1 in absolute mode, |z| in relative)
+ *   rho = min_{k = p-1, p} (s / |z^[k]|_inf)^(1/k)   (the radius of convergence)
+ *   h = rho * exp(-2) * exp(-0.7 / (p - 1))
  *
- * made safe where orders of the series vanish by symmetry (at q = 0 in
- * the well q^4/4 the last two can both be 0): the orders p-5..p-2 also
- * bound the step, |z^[k]| h^k <= eps e^(3.5 (p-1-k)), which leaves an
- * ordinary orbit's step as it is; where they shorten it, or all of the
+ * so that a step's last two terms are under tol s e^-2.7 and tol s e^-0.7,
+ * and its truncation error about a hundredth of tol s: tol bounds a step's
+ * error, not a run's (docs/tolerance.md says what a run makes of it).
+ * The state is added to the step's increment last, its rounding carried
+ * to the next step (compensated summation, reset at each evolve).
+ *
+ * The step is made safe where orders of the series vanish by symmetry (at
+ * q = 0 in the well q^4/4 the last two can both be 0), eps = tol s: the
+ * orders p-5..p-2 also bound the step, |z^[k]| h^k <= eps e^(3.5 (p-1-k)),
+ * which leaves an ordinary orbit's step as it is; where they shorten it, or all of the
  * last six orders are 0, the step is checked by its defect
  * |P'(h) - f(P(h))| (P the step's polynomial) and shortened until the
  * tail it implies is under eps (so are the first step of each run or
- * evolve, and every step below order 10: tolerances above 1.5e-8).  The equilibrium, all of whose orders past 0 vanish, stays put
- * in one step.  (src/flow/flow_impl.h says why, and what it cannot see.)
+ * evolve, and every step below order 10: tolerances above 1.5e-8).  The equilibrium, all of whose
+ * orders past 0 vanish, stays put in one step.  (src/flow/flow_impl.h says why, and what it cannot
+ * see.)
  *
  * Dense output: the polynomial of a step is valid over the whole step, so
  * outputs at given times are evaluated on it, without shortening steps (only

@@ -15,9 +15,11 @@ struct hl_flow {
     int n, p;
     double atol, rtol;
     double ln_atol, ln_rtol;
+    double ln_tol; /* the tolerance the order is from */
     double *coef; /* n * (p+1) Taylor coefficients of the current step */
     double *zt;   /* n: state at an output time */
     double *dz, *fz; /* n each: P'(h) and f(P(h)), to check a step */
+    double *zlo, *lo_next; /* n each: the state's rounding carried (advance) */
     double eps;      /* the current step's tolerance */
     int check;       /* the current step is to be checked (hl_flow_shrink) */
     long nsteps;
@@ -57,11 +59,14 @@ hl_status hl_flow_new(hl_flow **out, hl_tape *f, double atol, double rtol, hl_er
     fl->ln_rtol = log(rtol);
     /* an atol far below rtol only says that the relative error counts
      * near 0; an order from it would not be reached in double */
-    fl->p = hl_flow_order_for(log(fmax(fmin(atol, rtol), HL_FLOW_MIN_RTOL)));
+    fl->ln_tol = log(fmax(fmin(atol, rtol), HL_FLOW_MIN_RTOL));
+    fl->p = hl_flow_order_for(fl->ln_tol);
     fl->coef = hl_xcalloc((size_t)n * (fl->p + 1), sizeof *fl->coef);
     fl->zt = hl_xcalloc((size_t)n, sizeof *fl->zt);
     fl->dz = hl_xcalloc((size_t)n, sizeof *fl->dz);
     fl->fz = hl_xcalloc((size_t)n, sizeof *fl->fz);
+    fl->zlo = hl_xcalloc((size_t)n, sizeof *fl->zlo);
+    fl->lo_next = hl_xcalloc((size_t)n, sizeof *fl->lo_next);
     fl->native_end = NAN;
     *out = fl;
     return HL_OK;
@@ -76,6 +81,8 @@ void hl_flow_free(hl_flow *fl)
     free(fl->dz);
     free(fl->fz);
     free(fl->ze);
+    free(fl->zlo);
+    free(fl->lo_next);
     free(fl);
 }
 
@@ -140,22 +147,45 @@ static void time_add(double *hi, double *lo, double h)
     *lo = e - (*hi - s);
 }
 
-/* z_i = sum_k c_i[k] h^k as E(h^2) + h O(h^2), the even and the odd
- * coefficients by Horner in h^2: two chains of p/2 multiply-adds that the
- * processor runs side by side, where one Horner chain of p was a fifth of
- * a step of Kepler's problem. */
+/* sum_{k>=1} c[k] h^k, h2 = h^2, as h O(h^2) + h^2 E(h^2): the odd and the
+ * even coefficients by Horner in h^2, two chains of p/2 multiply-adds that
+ * the processor runs side by side, where one Horner chain of p was a fifth
+ * of a step of Kepler's problem.  p >= 2. */
+static inline double increment(const double *c, int p, double h, double h2)
+{
+    const int top_e = p & ~1, top_o = (p - 1) | 1;
+    double e = c[top_e], o = top_o <= p ? c[top_o] : 0;
+    for (int k = top_e - 2; k >= 2; k -= 2)
+        e = e * h2 + c[k];
+    for (int k = top_o - 2; k >= 1; k -= 2)
+        o = o * h2 + c[k];
+    return h * o + h2 * e;
+}
+
+/* z_i = sum_k c_i[k] h^k, the state c_i[0] added last: one rounding at the
+ * state's scale (see advance) */
 static void horner(double *z, const double *coef, int n, int p, double h)
 {
-    const int S = p + 1, top_e = p & ~1, top_o = (p - 1) | 1;
-    const double h2 = h * h;
+    const int S = p + 1;
+    for (int i = 0; i < n; i++)
+        z[i] = coef[(size_t)i * S] + increment(coef + (size_t)i * S, p, h, h * h);
+}
+
+/* The state after a step, z_i = c_i[0] + increment, with the rounding of
+ * that sum carried in lo_i to the next step's (compensated summation,
+ * Knuth's two-sum): below tolerances of about 1e-14 the error of a long run
+ * is these roundings, one per step at the state's scale, and with them
+ * carried it is the far smaller roundings of the increments.  The state
+ * was added into the even chain before: two roundings a step, and errors
+ * 2-4 times heyoka's at the same steps (issue 17). */
+static void advance(double *z, double *lo, const double *coef, int n, int p, double h)
+{
+    const int S = p + 1;
     for (int i = 0; i < n; i++) {
         const double *c = coef + (size_t)i * S;
-        double e = c[top_e], o = top_o <= p ? c[top_o] : 0;
-        for (int k = top_e - 2; k >= 0; k -= 2)
-            e = e * h2 + c[k];
-        for (int k = top_o - 2; k >= 1; k -= 2)
-            o = o * h2 + c[k];
-        z[i] = e + h * o;
+        double a = c[0], b = increment(c, p, h, h * h) + lo[i], s = a + b, bv = s - a;
+        lo[i] = (a - (s - bv)) + (b - bv);
+        z[i] = s;
     }
 }
 
@@ -217,7 +247,7 @@ static int step_size(double *h, hl_flow *fl, const double *z, double t, hl_error
     int relative = fl->rtol * n0 > fl->atol;
     fl->eps = relative ? fl->rtol * n0 : fl->atol;
     double ln_eps = relative ? fl->ln_rtol + log(n0) : fl->ln_atol;
-    *h = hl_flow_step_for(&fl->check, fl->eps, ln_eps, win, p);
+    *h = hl_flow_step_for(&fl->check, fl->eps, ln_eps, fl->ln_tol, win, p);
     if (isnan(*h))
         return hl_error_set(err, HL_EDOM, NULL, -1, 0,
                             "the solution is not finite (Taylor coefficients overflow) at t = %.17g", t);
@@ -303,6 +333,7 @@ static int drive(hl_flow *fl, double *thi, double *tlo, double *z, double tend, 
 {
     const double dir = tend >= *thi ? 1 : -1;
     int j = 0, st, first = 1;
+    memset(fl->zlo, 0, (size_t)fl->n * sizeof *fl->zlo); /* z is the caller's */
     for (;;) {
         for (; j < nts && dir * ((ts[j] - *thi) - *tlo) <= 0; j++)
             if ((st = fn(ts[j], z, arg)) != 0)
@@ -323,11 +354,13 @@ static int drive(hl_flow *fl, double *thi, double *tlo, double *z, double tend, 
         int last = h == rem;
         if ((st = step_outputs(fl, &j, thi, tlo, z, h, dir, ts, nts, fn, arg)) != 0)
             return st;
-        horner(fl->zt, fl->coef, fl->n, fl->p, dir * h);
+        memcpy(fl->lo_next, fl->zlo, (size_t)fl->n * sizeof *z);
+        advance(fl->zt, fl->lo_next, fl->coef, fl->n, fl->p, dir * h);
         if (!all_finite(fl->zt, fl->n))
             return hl_error_set(err, HL_EDOM, NULL, -1, 0, "the solution is not finite at t = %.17g",
                                 *thi + dir * h);
         memcpy(z, fl->zt, (size_t)fl->n * sizeof *z);
+        memcpy(fl->zlo, fl->lo_next, (size_t)fl->n * sizeof *z);
         fl->nsteps++;
         native_decide(fl, *thi + dir * h);
         if (last) {

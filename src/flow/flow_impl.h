@@ -2,15 +2,18 @@
  * order from the tolerance, and the step from the coefficient norms
  * N_k = max_i |z_i^[k]|.
  *
- * Jorba & Zou (2005, section 3.2) take the step at which the terms of the
- * last two orders are eps:  h = min_{k=p-1,p} (eps/N_k)^(1/k) e^(-0.7/(p-1)).
+ * Jorba & Zou (2005, section 3.2) estimate the radius of convergence from
+ * the last two orders and step a fixed fraction of it:
+ *   rho = min_{k=p-1,p} (s/N_k)^(1/k),  h = rho e^-2 e^(-0.7/(p-1)),
+ * s = max(1, |z|) (s = eps/tol; the tolerance picked the order).
  * NOTE: that reads the tail of the series from two coefficients, and at
  * points of symmetry whole orders vanish: from q = 0 in the well q^4/4, q(t)
  * has terms only at the orders 1 mod 4 and p(t) at 0 mod 4, so N_{p-1} and
  * N_p can both be 0 (an unbounded step), or tiny near q = 0 (a step far too
  * long).  So the step also keeps the terms of the orders below, back to
  * p - HL_FLOW_WINDOW + 1, under eps e^(3.5 (p-1-k)): at Jorba & Zou's step a
- * converging series falls by about e^2 an order, so this binds only where
+ * converging series falls by e^2 an order (N_k h^k ~ eps e^(2 (p-1-k))),
+ * so this binds only where
  * an order below is out of line with the last two (an ordinary orbit keeps
  * its step), and then the terms past p, which repeat the pattern, stay
  * near eps.  Where the orders below do bind, and where every order of the
@@ -72,13 +75,27 @@ static inline double hl_flow_powi(double x, int k)
     return r;
 }
 
-/* The step from win[k - lo] = N_k, k = lo..p (lo = hl_flow_window_lo), for the
- * tolerance eps and ln_eps = ln(eps) (eps may underflow where ln_eps does
- * not: then the test below fails and the log domain decides): > 0; +inf
- * when every N_k of the window is 0; NaN when one is not finite.  *check
- * = 1 if the step is to be checked (hl_flow_shrink), else 0. */
-static inline double hl_flow_step_for(int *check, double eps, double ln_eps, const double *win,
-                                      int p)
+/* Jorba & Zou's factor on the radius of convergence: e^-2 so that order p
+ * = -ln(tol)/2 + 1 makes the last term (h/rho)^p about tol e^-2, and
+ * e^(-0.7/(p-1)) for the tail past it.  heyoka (taylor_00.cpp,
+ * taylor_determine_h_rhofac) uses the same; an earlier rule here read eps
+ * into the radius itself, h = (eps/N_k)^(1/k), which is eps^(1/p) ~ e^-1.8
+ * of the radius instead of e^-2: 8-11 % longer steps and up to 10x the
+ * error of heyoka at the same tol (issue 17). */
+static inline double hl_flow_ln_safety(int p)
+{
+    return -2 - 0.7 / (p - 1);
+}
+
+/* The step from win[k - lo] = N_k, k = lo..p (lo = hl_flow_window_lo), for
+ * the tolerance eps of this step (ln_eps = ln(eps)) and the tolerance
+ * ln_tol the order p was chosen for (eps = tol max(1, |z|) when atol = rtol
+ * = tol).  eps may underflow where ln_eps does not: then the test below
+ * fails and the log domain decides.  Returns > 0; +inf when every N_k of
+ * the window is 0; NaN when one is not finite.  *check = 1 if the step is
+ * to be checked (hl_flow_shrink), else 0. */
+static inline double hl_flow_step_for(int *check, double eps, double ln_eps, double ln_tol,
+                                      const double *win, int p)
 {
     const int lo = hl_flow_window_lo(p);
     double sum = 0;
@@ -89,13 +106,15 @@ static inline double hl_flow_step_for(int *check, double eps, double ln_eps, con
         return NAN;
     if (sum == 0)
         return INFINITY;
-    /* Jorba & Zou, in the log domain so that one exp gives the step */
-    double e = INFINITY;
+    /* Jorba & Zou: the radius rho = min_{k=p-1,p} (s / N_k)^(1/k), s = eps/tol
+     * the scale of the state (1 in absolute mode, |z| in relative), and h =
+     * rho times the safety factor; in the log domain, so one exp gives h */
+    double lh = INFINITY;
     for (int k = p - 1; k <= p; k++)
         if (win[k - lo] > 0)
-            e = fmin(e, (ln_eps - log(win[k - lo])) / k);
-    const double fudge = -0.7 / (p - 1);
-    double h = exp(e + fudge);
+            lh = fmin(lh, (ln_eps - ln_tol - log(win[k - lo])) / k);
+    lh += hl_flow_ln_safety(p);
+    double h = exp(lh);
     /* the orders below: N_k h^k <= eps e^(3.5 (p-1-k)).  First all at once,
      * without logs or branches (most steps end here)... */
     double worst = 0, pw = hl_flow_powi(h, lo);
@@ -108,15 +127,19 @@ static inline double hl_flow_step_for(int *check, double eps, double ln_eps, con
     if (worst <= eps && h < INFINITY)
         return h;
     /* ...else one by one, solved where it fails; a shorter h keeps the
-     * orders already passed */
+     * orders already passed.  The step an order below allows keeps only the
+     * tail's factor e^(-0.7/(p-1)): its bound already says how far below
+     * eps that order must be, and the defect check (hl_flow_shrink) has the
+     * last word on such a step. */
     double bound = eps * exp(HL_FLOW_SLACK), hk = hl_flow_powi(h, p - 2), inv_h = 1 / h;
     for (int k = p - 2; k >= lo; k--, bound *= exp(HL_FLOW_SLACK), hk *= inv_h) {
         if (win[k - lo] > 0 && !(win[k - lo] * hk <= bound)) { /* NaN (h = inf) fails too */
-            double ek = (ln_eps + HL_FLOW_SLACK * (p - 1 - k) - log(win[k - lo])) / k;
-            if (ek < e) { /* not if eps underflowed: the test failed wrongly */
+            double lk =
+                (ln_eps + HL_FLOW_SLACK * (p - 1 - k) - log(win[k - lo])) / k - 0.7 / (p - 1);
+            if (lk < lh) { /* not if eps underflowed: the test failed wrongly */
                 *check = 1;
-                e = ek;
-                h = exp(e + fudge);
+                lh = lk;
+                h = exp(lh);
                 hk = hl_flow_powi(h, k);
                 inv_h = 1 / h;
             }
