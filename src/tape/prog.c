@@ -449,7 +449,11 @@ static double *at(const spaces *s, long l)
 
 static int conv_code(const mconv *m)
 {
-    return m->partner ? M_CONV_PAIR : m->known_done ? M_CONV_LANES : M_CONV + m->kind;
+    if (m->partner || m->known_done)
+        return m->partner ? M_CONV_PAIR : M_CONV_LANES;
+    if (m->npost == 0 && m->kind != CV_WEIGHTED)
+        return m->kind == CV_PLAIN ? M_CONV_BARE : M_CONV_TABLE_BARE;
+    return M_CONV + m->kind;
 }
 
 static hl_prog *finish(rec *r, double *reg, int ncode, int *start, int nk)
@@ -464,7 +468,8 @@ static hl_prog *finish(rec *r, double *reg, int ncode, int *start, int nk)
     for (int i = 0; i < r->nops; i++) {
         const rop *o = &r->ops[i];
         int code = o->code == M_CONV ? conv_code(&r->cv[o->arg]) : o->code;
-        p->op[i] = (mop){code, o->arg, at(&s, o->d), at(&s, o->a), at(&s, o->b), at(&s, o->c)};
+        p->op[i] =
+            (mop){NULL, code, o->arg, at(&s, o->d), at(&s, o->a), at(&s, o->b), at(&s, o->c)};
     }
     p->cv = r->cv;
     p->wts = r->wts ? r->wts : hl_xmalloc(1);
@@ -490,6 +495,8 @@ static hl_prog *finish(rec *r, double *reg, int ncode, int *start, int nk)
     }
     p->start = start;
     p->nk = nk;
+    p->nop = r->nops;
+    hl_prog_bind(p);
     free(r->ops);
     free(r->consts);
     free(r->tloc);

@@ -17,19 +17,25 @@ static inline __attribute__((always_inline)) RUN_TARGET double CAT(RUN, _table)(
     return add_fresh(m, KNOWN_TABLE(m));
 }
 
-/* Computed goto, not a switch: one indirect jump per handler, so the
- * branch predictor learns each op's successor in the fixed sequence; the
- * program of each coefficient ends with M_END, so a step is one load and
- * one jump. */
-static RUN_TARGET void RUN(const hl_prog *p, int k)
+/* Threaded code: each op holds its handler's address (hl_prog_bind), so a
+ * step is one indirect jump, which the branch predictor learns per handler
+ * in the fixed sequence; the program of each coefficient ends with M_END,
+ * so there is no test of the end.  Called with p = NULL, gives the
+ * handlers' addresses in the order of mcode. */
+static RUN_TARGET void RUN(const hl_prog *p, int k, const void *const **labels)
 {
-    static const void *const go[] = {&&mov,    &&neg,    &&add,    &&sub,     &&mul,
-                                     &&div,    &&fma_,   &&call_,  &&sincos_, &&conv_,
-                                     &&conv_t, &&conv_w, &&conv_p, &&conv_l,  &&end};
+    static const void *const go[] = {&&mov,    &&neg,    &&add,     &&sub,     &&mul,    &&div,
+                                     &&fma_,   &&call_,  &&sincos_, &&conv_,   &&conv_t, &&conv_w,
+                                     &&conv_p, &&conv_l, &&conv_0,  &&conv_t0, &&end};
+    _Static_assert(sizeof go / sizeof *go == M_END + 1, "a handler per mcode");
+    if (p == NULL) {
+        *labels = go;
+        return;
+    }
     mconv *cv = p->cv; /* a pair's first convolution writes its partner's known sum */
     const mop *o = p->op + p->start[k];
-#define NEXT() goto *go[(++o)->code]
-    goto *go[o->code];
+#define NEXT() goto *(++o)->go
+    goto * o->go;
 mov:
     *o->d = *o->a;
     NEXT();
@@ -74,6 +80,12 @@ conv_p : {
 }
 conv_l:
     conv_post(&cv[o->arg], add_fresh(&cv[o->arg], cv[o->arg].known), o->d);
+    NEXT();
+conv_0:
+    *o->d = CAT(RUN, _plain)(&cv[o->arg]);
+    NEXT();
+conv_t0:
+    *o->d = CAT(RUN, _table)(&cv[o->arg]);
     NEXT();
 end:
     return;

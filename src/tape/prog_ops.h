@@ -21,7 +21,9 @@ typedef enum mcode {
     M_CONV_WEIGHTED,
     M_CONV_PAIR,  /* a tabled convolution and its partner's known sum */
     M_CONV_LANES, /* a partner: its known sum is done already */
-    M_END         /* closes the program of each coefficient */
+    M_CONV_BARE,  /* M_CONV_PLAIN, M_CONV_TABLE without post-operations */
+    M_CONV_TABLE_BARE,
+    M_END /* closes the program of each coefficient */
 } mcode;
 
 /* How a convolution's known terms read: x[j] y[k-j], or (w[j] x[j]) y[k-j]
@@ -33,8 +35,11 @@ enum { CV_PLAIN, CV_TABLE, CV_WEIGHTED };
 
 /* A micro-operation: *d = a op b (op c); M_CALL: arg is the hl_pfn;
  * M_SINCOS: *d = sin a, *c = cos a (glibc's sincos gives sin's and cos's
- * bits); M_CONV: *d = the convolution cv[arg]. */
+ * bits); M_CONV: *d = the convolution cv[arg].  go: the address of code's
+ * handler in the loop that runs the program (threaded code: a step is one
+ * indirect jump, no table). */
 typedef struct mop {
+    const void *go;
     int code, arg;
     double *d;
     const double *a, *b, *c;
@@ -88,12 +93,18 @@ typedef struct mconv {
 } mconv;
 
 struct hl_prog {
+    void (*run)(const hl_prog *p, int k, const void *const **labels); /* this processor's loop */
     mop *op;
+    int nop;
     int *start; /* the program of coefficient k is op[start[k] ..], up to its M_END */
     int nk;
     mconv *cv;
     double *mem; /* constants, temporaries, kept values */
     double *wts; /* the convolutions' weights */
 };
+
+/* Choose the loop for this processor and point each op at its handler
+ * (prog_run.c); after the ops are final. */
+void hl_prog_bind(hl_prog *p);
 
 #endif /* HAMLIE_TAPE_PROG_OPS_H */

@@ -250,13 +250,21 @@ static inline __attribute__((always_inline)) void conv_post(const mconv *m, doub
 #include "tape/prog_loop.h"
 #endif
 
+void hl_prog_bind(hl_prog *p)
+{
+    void (*run)(const hl_prog *, int, const void *const **) = run_scalar;
+#if HAVE_VEC
+    if (__builtin_cpu_supports("avx2"))
+        run = run_vec;
+#endif
+    const void *const *go;
+    run(NULL, 0, &go);
+    for (int i = 0; i < p->nop; i++)
+        p->op[i].go = go[p->op[i].code];
+    p->run = run;
+}
+
 void hl_prog_run(const hl_prog *p, int k)
 {
-#if HAVE_VEC
-    if (__builtin_cpu_supports("avx2")) {
-        run_vec(p, k);
-        return;
-    }
-#endif
-    run_scalar(p, k);
+    p->run(p, k, NULL);
 }
