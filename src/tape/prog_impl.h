@@ -1,4 +1,5 @@
-/* The double interpreter's recorded programs (prog.c).
+/* The double interpreter's recorded programs (prog.c records them,
+ * prog_run.c runs them; their layout is prog_ops.h).
  *
  * The rules of src/rules/ say what to compute through an emitter; calling
  * them (through function pointers, per term) at every step would cost more
@@ -6,9 +7,10 @@
  * through a recording emitter, which writes for each coefficient k a flat
  * list of micro-operations with resolved pointers (into the Taylor register
  * file, the constants, a few temporaries, and the values each instruction
- * keeps from k = 0), and then executes that list with one tight switch.  A
- * convolution is one micro-operation whose loop runs in C in hl_conv_plan's
- * order, so interpreted and compiled runs agree bit for bit. */
+ * keeps from k = 0), and then executes that list with threaded code (each
+ * op holds its handler's address).  A convolution is one micro-operation
+ * whose loop runs in C in hl_conv_plan's order, so interpreted and
+ * compiled runs agree bit for bit. */
 #ifndef HAMLIE_TAPE_PROG_IMPL_H
 #define HAMLIE_TAPE_PROG_IMPL_H
 

@@ -1,0 +1,101 @@
+/* The double interpreter's loop, included twice by prog_run.c: once with
+ * the scalar sums of the known terms, once with the vector ones (AVX2).
+ * Before including: RUN (the function's name), RUN_TARGET (its target
+ * attribute), KNOWN_PLAIN, KNOWN_TABLE, KNOWN_PAIR (the sums). */
+
+#define CAT_(a, b) a##b
+#define CAT(a, b) CAT_(a, b)
+
+/* a convolution: its known sum, if it has known terms, then its fresh terms */
+static inline __attribute__((always_inline)) RUN_TARGET double CAT(RUN, _plain)(const mconv *m)
+{
+    return add_fresh(m, KNOWN_PLAIN(m));
+}
+
+static inline __attribute__((always_inline)) RUN_TARGET double CAT(RUN, _table)(const mconv *m)
+{
+    return add_fresh(m, KNOWN_TABLE(m));
+}
+
+/* Threaded code: each op holds its handler's address (hl_prog_bind), so a
+ * step is one indirect jump, which the branch predictor learns per handler
+ * in the fixed sequence; the program of each coefficient ends with M_END,
+ * so there is no test of the end.  Called with p = NULL, gives the
+ * handlers' addresses in the order of mcode. */
+static RUN_TARGET void RUN(const hl_prog *p, int k, const void *const **labels)
+{
+    static const void *const go[] = {&&mov,    &&neg,    &&add,     &&sub,     &&mul,    &&div,
+                                     &&fma_,   &&call_,  &&sincos_, &&conv_,   &&conv_t, &&conv_w,
+                                     &&conv_p, &&conv_l, &&conv_0,  &&conv_t0, &&end};
+    _Static_assert(sizeof go / sizeof *go == M_END + 1, "a handler per mcode");
+    if (p == NULL) {
+        *labels = go;
+        return;
+    }
+    mconv *cv = p->cv; /* a pair's first convolution writes its partner's known sum */
+    const mop *o = p->op + p->start[k];
+#define NEXT() goto *(++o)->go
+    goto * o->go;
+mov:
+    *o->d = *o->a;
+    NEXT();
+neg:
+    *o->d = -*o->a;
+    NEXT();
+add:
+    *o->d = *o->a + *o->b;
+    NEXT();
+sub:
+    *o->d = *o->a - *o->b;
+    NEXT();
+mul:
+    *o->d = *o->a * *o->b;
+    NEXT();
+div:
+    *o->d = *o->a / *o->b;
+    NEXT();
+fma_:
+    *o->d = fma(*o->a, *o->b, *o->c);
+    NEXT();
+call_:
+    *o->d = hl_pfn_eval(o->arg, *o->a, *o->b);
+    NEXT();
+sincos_:
+    sincos(*o->a, o->d, (double *)o->c);
+    NEXT();
+conv_:
+    conv_post(&cv[o->arg], CAT(RUN, _plain)(&cv[o->arg]), o->d);
+    NEXT();
+conv_t:
+    conv_post(&cv[o->arg], CAT(RUN, _table)(&cv[o->arg]), o->d);
+    NEXT();
+conv_w:
+    conv_run_weights(&cv[o->arg]);
+    conv_post(&cv[o->arg], CAT(RUN, _table)(&cv[o->arg]), o->d);
+    NEXT();
+conv_p : {
+    mconv *m = &cv[o->arg];
+    conv_post(m, add_fresh(m, KNOWN_PAIR(m, &cv[m->partner - 1])), o->d);
+    NEXT();
+}
+conv_l:
+    conv_post(&cv[o->arg], add_fresh(&cv[o->arg], cv[o->arg].known), o->d);
+    NEXT();
+conv_0:
+    *o->d = CAT(RUN, _plain)(&cv[o->arg]);
+    NEXT();
+conv_t0:
+    *o->d = CAT(RUN, _table)(&cv[o->arg]);
+    NEXT();
+end:
+    return;
+#undef NEXT
+}
+
+#undef CAT
+#undef CAT_
+#undef RUN
+#undef RUN_TARGET
+#undef KNOWN_PLAIN
+#undef KNOWN_TABLE
+#undef KNOWN_PAIR

@@ -1,0 +1,270 @@
+/* The double interpreter's loop: runs the programs prog.c recorded (the
+ * layout is prog_ops.h).  A convolution is one micro-operation whose loop
+ * runs here in hl_conv_plan's order (rule.h), so interpreted and compiled
+ * runs agree bit for bit.
+ *
+ * Four lanes that start at -0 instead of at their first term: -0 + t is t
+ * for every t (+0, -0 and NaN included, in the default rounding), so the
+ * first addition gives rule.h's first term exactly, and an empty lane adds
+ * nothing to (l0 + l1) + (l2 + l3), as if left out.  So a sum of any length
+ * is one loop without special cases, and a convolution without known terms
+ * starts its fresh terms from -0, which again gives the first one exactly.
+ *
+ * Where the processor has AVX2 the four lanes are one vector register:
+ * lane i of the vector is lane i of rule.h, and a vector product or sum is
+ * four IEEE operations each rounded as its scalar one (AVX2 has no fused
+ * multiply-add, so none is contracted), so the bits are those of the
+ * scalar lanes in about a third of the instructions.  The loop
+ * (prog_loop.h) is compiled twice, with the vector sums and with the
+ * scalar ones, and the processor picks. */
+#define _GNU_SOURCE /* sincos */
+#include <math.h>
+#include <string.h>
+
+#include "rules/rule.h"
+#include "tape/prog_ops.h"
+
+/* ---- the known terms, one at a time ----------------------------------------- */
+
+#define T_PLAIN(j) (x[j] * y[k - (j)])
+#define T_TABLE(j) (w[j] * x[j] * y[k - (j)])
+#define T_SECOND(j) (w[j] * x[j] * z[k - (j)])
+
+/* out = the sum of the known terms j = jl..jh (-0 when there are none):
+ * term i into lane i mod 4, lanes added as rule.h says. */
+#define KNOWN_SUM(out, TERM)                                                                       \
+    do {                                                                                           \
+        double l0 = -0.0, l1 = -0.0, l2 = -0.0, l3 = -0.0;                                         \
+        int j = jl;                                                                                \
+        for (; j + 3 <= jh; j += 4)                                                                \
+            l0 += TERM(j), l1 += TERM(j + 1), l2 += TERM(j + 2), l3 += TERM(j + 3);                \
+        if (j <= jh)                                                                               \
+            l0 += TERM(j);                                                                         \
+        if (j + 1 <= jh)                                                                           \
+            l1 += TERM(j + 1);                                                                     \
+        if (j + 2 <= jh)                                                                           \
+            l2 += TERM(j + 2);                                                                     \
+        out = (l0 + l1) + (l2 + l3);                                                               \
+    } while (0)
+
+static inline double known_plain(const mconv *m)
+{
+    const double *x = m->x, *y = m->y;
+    const int k = m->k, jl = m->jl, jh = m->jh;
+    double s;
+    KNOWN_SUM(s, T_PLAIN);
+    return s;
+}
+
+static inline double known_table(const mconv *m)
+{
+    const double *x = m->x, *y = m->y, *w = m->w;
+    const int k = m->k, jl = m->jl, jh = m->jh;
+    double s;
+    KNOWN_SUM(s, T_TABLE);
+    return s;
+}
+
+/* Both known sums of a pair (mconv); the second's left in its known. */
+static double known_pair(const mconv *m, mconv *second)
+{
+    const double *x = m->x, *y = m->y, *z = second->y, *w = m->w;
+    const int k = m->k, jl = m->jl, jh = m->jh;
+    double s;
+    KNOWN_SUM(second->known, T_SECOND);
+    KNOWN_SUM(s, T_TABLE);
+    return s;
+}
+
+/* ---- the known terms, four at a time ----------------------------------------- */
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#define HAVE_VEC 1
+#define VEC __attribute__((target("avx2")))
+
+/* The last 1..3 terms: lanes 0..r-1 of x (and w) at j, and y[k-j..] at the
+ * top of the four from y + k - j - 3, read under a mask (what is past the
+ * end is never touched); the lanes past r get -0, which adds nothing. */
+static const long long lane_mask[4][4] = {
+    {0, 0, 0, 0}, {-1, 0, 0, 0}, {-1, -1, 0, 0}, {-1, -1, -1, 0}};
+static const long long top_mask[4][4] = {
+    {0, 0, 0, 0}, {0, 0, 0, -1}, {0, 0, -1, -1}, {0, -1, -1, -1}};
+
+#define LOAD4(p) _mm256_loadu_pd(p)
+/* (p[3], p[2], p[1], p[0]): y[k-j] for j..j+3 from p = y + k - j - 3 */
+#define REVERSED(v) _mm256_permute4x64_pd(v, 0x1b)
+#define MASK(t, r) _mm256_loadu_si256((const __m256i *)t[r])
+#define RLOAD4(p, r) _mm256_maskload_pd(p, MASK(lane_mask, r))
+#define RLOAD4_TOP(p, r) _mm256_maskload_pd(p, MASK(top_mask, r))
+/* the lanes past r to -0: +0 there (a masked product) with the sign set */
+#define PAST_R(v, r)                                                                               \
+    _mm256_or_pd(v, _mm256_andnot_pd(_mm256_castsi256_pd(MASK(lane_mask, r)), _mm256_set1_pd(-0.0)))
+
+static inline VEC double lanes_added(__m256d acc)
+{
+    __m128d h = _mm_hadd_pd(_mm256_castpd256_pd128(acc), _mm256_extractf128_pd(acc, 1));
+    return _mm_cvtsd_f64(h) + _mm_cvtsd_f64(_mm_unpackhi_pd(h, h)); /* (l0+l1) + (l2+l3) */
+}
+
+static inline VEC double known_plain_vec(const mconv *m)
+{
+    const double *x = m->x, *y = m->y;
+    const int k = m->k, jl = m->jl, jh = m->jh;
+    __m256d acc = _mm256_set1_pd(-0.0);
+    int j = jl;
+    for (; j + 3 <= jh; j += 4)
+        acc += LOAD4(x + j) * REVERSED(LOAD4(y + k - j - 3));
+    int r = jh - j + 1;
+    if (r > 0)
+        acc += PAST_R(RLOAD4(x + j, r) * REVERSED(RLOAD4_TOP(y + k - j - 3, r)), r);
+    return lanes_added(acc);
+}
+
+static inline VEC double known_table_vec(const mconv *m)
+{
+    const double *x = m->x, *y = m->y, *w = m->w;
+    const int k = m->k, jl = m->jl, jh = m->jh;
+    __m256d acc = _mm256_set1_pd(-0.0);
+    int j = jl;
+    for (; j + 3 <= jh; j += 4)
+        acc += LOAD4(w + j) * LOAD4(x + j) * REVERSED(LOAD4(y + k - j - 3));
+    int r = jh - j + 1;
+    if (r > 0) {
+        __m256d wx = RLOAD4(w + j, r) * RLOAD4(x + j, r);
+        acc += PAST_R(wx * REVERSED(RLOAD4_TOP(y + k - j - 3, r)), r);
+    }
+    return lanes_added(acc);
+}
+
+static VEC double known_pair_vec(const mconv *m, mconv *second)
+{
+    const double *x = m->x, *y = m->y, *z = second->y, *w = m->w;
+    const int k = m->k, jl = m->jl, jh = m->jh;
+    __m256d acc = _mm256_set1_pd(-0.0), acc2 = acc;
+    int j = jl;
+    for (; j + 3 <= jh; j += 4) {
+        __m256d wx = LOAD4(w + j) * LOAD4(x + j);
+        acc += wx * REVERSED(LOAD4(y + k - j - 3));
+        acc2 += wx * REVERSED(LOAD4(z + k - j - 3));
+    }
+    int r = jh - j + 1;
+    if (r > 0) {
+        __m256d wx = RLOAD4(w + j, r) * RLOAD4(x + j, r);
+        acc += PAST_R(wx * REVERSED(RLOAD4_TOP(y + k - j - 3, r)), r);
+        acc2 += PAST_R(wx * REVERSED(RLOAD4_TOP(z + k - j - 3, r)), r);
+    }
+    second->known = lanes_added(acc2);
+    return lanes_added(acc);
+}
+#else
+#define HAVE_VEC 0
+#endif
+
+/* ---- the rest of a convolution --------------------------------------------- */
+
+/* The fresh terms (w *p) *q added to the known sum s. */
+static inline __attribute__((always_inline)) double add_fresh(const mconv *m, double s)
+{
+    const fresh *f = m->f;
+    if (m->nf > 0)
+        s += (f[0].w * *f[0].p) * *f[0].q;
+    if (m->nf > 1)
+        s += (f[1].w * *f[1].p) * *f[1].q;
+    return s;
+}
+
+static int same_bits(double a, double b)
+{
+    return memcmp(&a, &b, sizeof a) == 0;
+}
+
+/* w[j] = wa j + wb for the run's wa, wb, rounded as rule.h says, and the
+ * fresh terms' weights; kept while wa and wb keep their bits. */
+static void conv_run_weights(mconv *m)
+{
+    const double wa = *m->wa, wb = *m->wb;
+    if (m->w_valid && same_bits(wa, m->wa_w) && same_bits(wb, m->wb_w))
+        return;
+    for (int j = m->jl; j <= m->jh; j++)
+        m->w[j] = wa * (double)j + wb;
+    for (int i = 0; i < m->nf; i++)
+        m->f[i].w = wa * (double)m->f[i].j + wb;
+    m->wa_w = wa, m->wb_w = wb, m->w_valid = 1;
+}
+
+/* s op b for a post-operation's code (prog_ops.h: P_*) */
+#define POST_OP(c, s, b)                                                                           \
+    ((c) == P_ADD    ? (s) + (b)                                                                   \
+     : (c) == P_SUB  ? (s) - (b)                                                                   \
+     : (c) == P_RSUB ? (b) - (s)                                                                   \
+     : (c) == P_MUL  ? (s) * (b)                                                                   \
+                     : -(s))
+#define POST1(c) (*m->post[0].d = s = POST_OP(c, s, *m->post[0].b))
+#define POST2(c) (*m->post[1].d = s = POST_OP(c, s, *m->post[1].b))
+#define CASE1(c0)                                                                                  \
+    case c0:                                                                                       \
+        POST1(c0);                                                                                 \
+        return;
+#define CASE2(c0, c1)                                                                              \
+    case c0 + P_N *c1:                                                                             \
+        POST1(c0), POST2(c1);                                                                      \
+        return;
+#define CASES2(c0)                                                                                 \
+    CASE2(c0, P_ADD) CASE2(c0, P_SUB) CASE2(c0, P_RSUB) CASE2(c0, P_MUL) CASE2(c0, P_NEG)
+
+/* The operations recorded after the sum s, run in the same micro-op: one
+ * or two of them by their codes' pair (m->shape), written out; longer
+ * chains in a loop. */
+static inline __attribute__((always_inline)) void conv_post(const mconv *m, double s, double *d)
+{
+    *d = s;
+    switch (m->shape) {
+    case 0:
+        return;
+        CASE1(P_ADD)
+        CASE1(P_SUB) CASE1(P_RSUB) CASE1(P_MUL) CASE1(P_NEG) CASES2(P_ADD) CASES2(P_SUB)
+            CASES2(P_RSUB) CASES2(P_MUL) CASES2(P_NEG) default : for (int i = 0; i < m->npost; i++)
+        {
+            const post *p = &m->post[i];
+            *p->d = s = POST_OP(p->code, s, *p->b);
+        }
+    }
+}
+
+/* ---- the loop ------------------------------------------------------------------ */
+
+#define RUN run_scalar
+#define RUN_TARGET
+#define KNOWN_PLAIN known_plain
+#define KNOWN_TABLE known_table
+#define KNOWN_PAIR known_pair
+#include "tape/prog_loop.h"
+
+#if HAVE_VEC
+#define RUN run_vec
+#define RUN_TARGET VEC
+#define KNOWN_PLAIN known_plain_vec
+#define KNOWN_TABLE known_table_vec
+#define KNOWN_PAIR known_pair_vec
+#include "tape/prog_loop.h"
+#endif
+
+void hl_prog_bind(hl_prog *p)
+{
+    void (*run)(const hl_prog *, int, const void *const **) = run_scalar;
+#if HAVE_VEC
+    if (__builtin_cpu_supports("avx2"))
+        run = run_vec;
+#endif
+    const void *const *go;
+    run(NULL, 0, &go);
+    for (int i = 0; i < p->nop; i++)
+        p->op[i].go = go[p->op[i].code];
+    p->run = run;
+}
+
+void hl_prog_run(const hl_prog *p, int k)
+{
+    p->run(p, k, NULL);
+}
