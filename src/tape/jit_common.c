@@ -122,6 +122,9 @@ static int add_host_isa(gcc_jit_context *c)
 
 hl_status hl_jit_context_new(gcc_jit_context **c, int opt, int *fma, hl_error *err)
 {
+    *c = NULL;
+    if (hl_gccjit_load(err) != HL_OK) /* loaded here, on the first compilation */
+        return HL_EUNSUP;
     *c = gcc_jit_context_acquire();
     if (*c == NULL)
         return hl_error_set(err, HL_EUNSUP, NULL, -1, 0, "libgccjit cannot start");
@@ -166,7 +169,8 @@ hl_status hl_jit_compile(gcc_jit_result **res, void **code, gcc_jit_context *c, 
 
 int hl_tape_jit_available(void)
 {
-    return 1;
+    /* not loaded to answer: callers ask before deciding to compile */
+    return hl_gccjit_not_failed();
 }
 
 #if defined(__SANITIZE_ADDRESS__)
