@@ -11,6 +11,8 @@
 # the minimum and the task-clock wander least.  The compiled run gets a
 # fifth of the runs (it takes seconds).  HAMLIE_BEFORE=path/to/old/hamlie
 # adds the same rows for another build, measured in the same loop.
+# STARTUP_INSTR=1 first counts instructions (valgrind's callgrind) of the
+# quick ones: the figure that load on the machine does not move.
 set -u
 HAMLIE=${1:-build/hamlie}
 RUNS=${2:-30}
@@ -71,6 +73,21 @@ commands() { # commands LABEL HAMLIE
     row "$tag run verlet 1e6 steps (jit)" $(((RUNS + 4) / 5)) "$h" run -H "$OSC" --scheme verlet \
         --dt 0.001 --t 1000 --init x=1,p=0 --no-reference --json
 }
+
+# instr cmd...: instructions executed, loader included (callgrind): the one
+# figure here that load on the machine does not move
+instr() {
+    valgrind --tool=callgrind --callgrind-out-file=/dev/null "$@" 2>&1 >/dev/null |
+        awk '/Collected/ { print $NF }'
+}
+if [ "${STARTUP_INSTR:-0}" = 1 ] && command -v valgrind >/dev/null; then
+    echo "instructions (callgrind, STARTUP_INSTR=1):"
+    for h in /bin/true "$HAMLIE" ${HAMLIE_BEFORE:-}; do
+        if [ "$h" = /bin/true ]; then printf "  %-50s %12s\n" /bin/true "$(instr /bin/true)"; continue; fi
+        printf "  %-50s %12s\n" "$h --version" "$(instr "$h" --version)"
+        printf "  %-50s %12s\n" "$h generator" "$(instr "$h" generator -H 'p^2/2+q^2/2')"
+    done
+fi
 
 echo "runs: $RUNS; times in ms; x: median / /bin/true's median"
 printf "%-34s %9s %9s %9s %8s\n" "command" "median" "min" "cpu" "x true"
