@@ -113,6 +113,17 @@ static int run_module(int argc, char **argv)
     return entry(argc, argv);
 }
 
+#if defined(__SANITIZE_ADDRESS__)
+/* LeakSanitizer asks the executable, at start, for its suppressions; the
+ * module's (jit_common.c's, for the library's own programs) comes too late.
+ * The same list: caches libgccjit and fontconfig keep for the process. */
+const char *__lsan_default_suppressions(void);
+const char *__lsan_default_suppressions(void)
+{
+    return "leak:libgccjit.so\nleak:libfontconfig.so\n";
+}
+#endif
+
 int main(int argc, char **argv)
 {
     int status = answer_here(argc, argv);
