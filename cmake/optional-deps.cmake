@@ -1,13 +1,18 @@
 # Optional and extra dependencies, included by CMakeLists.txt once HAMLIE_LINK
 # is set.  PLplot (cairo devices) draws the figures in src/report/plot.c.
+# Its headers only: the library is loaded on the first drawing
+# (src/report/plplot_api.c), so that commands that draw nothing never pay.
 pkg_check_modules(PLPLOT REQUIRED IMPORTED_TARGET plplot)
-target_link_libraries(hamlie_obj PUBLIC PkgConfig::PLPLOT)
-list(APPEND HAMLIE_LINK PkgConfig::PLPLOT)
+target_include_directories(hamlie_obj PRIVATE ${PLPLOT_INCLUDE_DIRS})
+list(APPEND HAMLIE_LINK ${CMAKE_DL_LIBS})
 
 # libgccjit (Debian: libgccjit-12-dev) compiles tapes to machine code in
 # process (src/tape/jit.c, hl_tape_jit).  Optional: without it hl_tape_jit
 # reports HL_EUNSUP and the interpreter runs; -DHAMLIE_GCCJIT=OFF builds
-# without it even where it is installed.
+# without it even where it is installed.  Its header is needed at build
+# time; the library is not linked but loaded on the first compilation
+# (src/tape/gccjit_api.c), and its absence at run time is the same
+# HL_EUNSUP.
 option(HAMLIE_GCCJIT "Compile tapes to machine code with libgccjit when it is found" ON)
 if(HAMLIE_GCCJIT)
   set(_gccjit_dirs /usr/lib/gcc/x86_64-linux-gnu/12 /usr/lib/x86_64-linux-gnu)
@@ -23,8 +28,8 @@ if(HAMLIE_GCCJIT AND GCCJIT_INCLUDE AND GCCJIT_LIB)
   target_compile_definitions(hamlie_obj PRIVATE HAMLIE_HAVE_GCCJIT)
   # SYSTEM: the directory also holds GCC's own stddef.h etc.; searched after ours
   target_include_directories(hamlie_obj SYSTEM AFTER PRIVATE ${GCCJIT_INCLUDE})
-  target_link_libraries(hamlie_obj PUBLIC ${GCCJIT_LIB})
-  list(APPEND HAMLIE_LINK ${GCCJIT_LIB})
+  # tried after the soname, for a libgccjit off the loader's path
+  target_compile_definitions(hamlie_obj PRIVATE HAMLIE_GCCJIT_PATH="${GCCJIT_LIB}")
 else()
   message(STATUS "libgccjit: not used (hl_tape_jit reports HL_EUNSUP)")
 endif()

@@ -154,6 +154,11 @@ hl_status hl_figure_write(const hl_figure *fig, const char *path, const char *fo
  * anything. */
 hl_status hl_figure_count_formats(int *n, const char *formats, hl_error *err);
 
+/* HL_OK if figures can be drawn: PLplot is loaded on the first drawing (or
+ * by this call); else HL_EUNSUP naming what to install.  Asked before
+ * creating folders, so that a missing PLplot leaves nothing behind. */
+hl_status hl_figure_drawable(hl_error *err);
+
 /* Create the folder dir and its parents (mkdir -p); HL_EIO naming the part
  * that cannot be created, or when a file of that name is in the way. */
 hl_status hl_figure_mkdir(const char *dir, hl_error *err);

@@ -183,7 +183,12 @@ void hl_tape_native_clear(hl_tape *tape); /* back to the interpreter */
 hl_status hl_tape_jit(hl_tape *tape, hl_error *err);
 void hl_tape_jit_clear(hl_tape *tape);          /* back to the interpreter */
 int hl_tape_jit_active(const hl_tape *tape);    /* 1 if eval_d runs machine code */
-int hl_tape_jit_available(void);                /* 1 if built with libgccjit */
+/* 1 if built with libgccjit and loading it (on the first compilation) has
+ * not failed; asking does not load it. */
+int hl_tape_jit_available(void);
+/* Why libgccjit could not be loaded ("libgccjit.so.0 not found: ..."), or
+ * NULL if it was not tried or loaded; the command line prints it as a note. */
+const char *hl_tape_jit_load_error(void);
 
 /* ---- when compiling pays (one cost model, src/tape/cost.c) -----------------
  * Each compiler costs a fixed time that a run repays by the uses it makes

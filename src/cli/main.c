@@ -1,9 +1,14 @@
 /* hamlie: the command table and the top-level options (git.c style: one
- * static table, one file per command). */
+ * static table, one file per command).  Built into the module hamlie-cli.so,
+ * which the launcher (launch.c) loads for every command; the launcher
+ * answers --version and --help itself from a copy of this table's texts
+ * made at build time (launch_gen.c), so they are written here only. */
 #include <stdio.h>
 #include <string.h>
 
 #include "cli/cli.h"
+#include "cli/launch.h"
+#include "hamlie/tape.h"
 
 #define COMMON_OPTIONS                                                          \
     "  --pairs x:px,y:py  the canonical pairs (default: inferred from the names:\n" \
@@ -130,7 +135,27 @@ static int finish_stdout(void)
     return CLI_OK;
 }
 
-int main(int argc, char **argv)
+const cli_command *hamlie_cli_table(int *n)
+{
+    *n = NCOMMANDS;
+    return commands;
+}
+
+void hamlie_cli_usage(FILE *fp)
+{
+    usage(fp);
+}
+
+/* What hamlie could not load and did without, said once the command is
+ * done (the library reports it; printing is the command line's job). */
+static void note_missing_libraries(void)
+{
+    const char *why = hl_tape_jit_load_error();
+    if (why != NULL)
+        fprintf(stderr, "hamlie: note: %s\n", why);
+}
+
+int hamlie_cli_main(int argc, char **argv)
 {
     if (argc < 2) {
         fprintf(stderr, "hamlie: error: no command given\n\n");
@@ -164,5 +189,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "hamlie: error: unknown command '%s' (see hamlie --help)\n", name);
         return CLI_ERROR;
     }
-    return c->fn(argc - 1, argv + 1, c);
+    int status = c->fn(argc - 1, argv + 1, c);
+    note_missing_libraries();
+    return status;
 }

@@ -395,8 +395,9 @@ hl_status hl_paper_figures(hl_paper_figure *figs, const char *dir, const char *f
     int nfmt;
     if (formats == NULL)
         formats = "png";
-    if (dir != NULL && ((st = hl_figure_count_formats(&nfmt, formats, err)) != HL_OK ||
-                        (st = hl_figure_mkdir(dir, err)) != HL_OK))
+    if (dir != NULL &&
+        ((st = hl_figure_count_formats(&nfmt, formats, err)) != HL_OK ||
+         (st = hl_figure_drawable(err)) != HL_OK || (st = hl_figure_mkdir(dir, err)) != HL_OK))
         return st;
     traj *tr = hl_xmalloc(S_COUNT * sizeof *tr);
     for (int k = 0; k < S_COUNT && st == HL_OK; k++)

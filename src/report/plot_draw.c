@@ -8,7 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <plplot.h>
+#include "report/plplot_api.h" /* PLplot, loaded on the first drawing */
 
 #include "base/buf.h"
 #include "report/plot_impl.h"
@@ -303,6 +303,9 @@ static hl_status draw_on_stream(const hl_figure *fig, const target *t, hl_plot_f
     char msg[1024] = "";
     hl_plot_layout lay;
 
+    hl_status loaded = hl_plplot_load(err);
+    if (loaded != HL_OK)
+        return loaded;
     if (!have_device(t->dev))
         return hl_error_set(err, HL_EUNSUP, NULL, -1, 0,
                             "PLplot device '%s' is not installed (plplot-driver-cairo)", t->dev);

@@ -553,7 +553,7 @@ hl_status hl_runplot_write(hl_runplot *const *runs, int nruns, const char *dir,
     int nfig;
     if ((st = hl_runplot_figures(&figs, &names, &nfig, runs, nruns, opts, err)) != HL_OK)
         return st;
-    if ((st = hl_figure_mkdir(dir, err)) != HL_OK) {
+    if ((st = hl_figure_drawable(err)) != HL_OK || (st = hl_figure_mkdir(dir, err)) != HL_OK) {
         hl_runplot_figures_free(figs, names, nfig);
         return st;
     }

@@ -135,6 +135,9 @@ static void add_host_isa(gcc_jit_context *c)
 
 hl_status hl_jit_context_new(gcc_jit_context **c, int opt, int host_isa, hl_error *err)
 {
+    *c = NULL;
+    if (hl_gccjit_load(err) != HL_OK) /* loaded here, on the first compilation */
+        return HL_EUNSUP;
     *c = gcc_jit_context_acquire();
     if (*c == NULL)
         return hl_error_set(err, HL_EUNSUP, NULL, -1, 0, "libgccjit cannot start");
@@ -160,7 +163,8 @@ void hl_jit_init(jit *J, gcc_jit_context *c, const hl_tape *t)
 
 int hl_tape_jit_available(void)
 {
-    return 1;
+    /* not loaded to answer: callers ask before deciding to compile */
+    return hl_gccjit_not_failed();
 }
 
 #if defined(__SANITIZE_ADDRESS__)

@@ -6,7 +6,7 @@
 #define HAMLIE_JIT_IMPL_H
 
 #ifdef HAMLIE_HAVE_GCCJIT
-#include <libgccjit.h>
+#include "tape/gccjit_api.h" /* libgccjit, loaded on first use */
 
 #include "rules/rule.h"
 #include "tape/tape_impl.h"

@@ -23,7 +23,7 @@
 #include "tape/tape_impl.h"
 
 #ifdef HAMLIE_HAVE_GCCJIT
-#include <libgccjit.h>
+#include "tape/gccjit_api.h"
 
 /* ---- the emitter: values are gccjit trees ------------------------------------- */
 
