@@ -409,32 +409,60 @@ static int factor_before(const dfactor *a, const dfactor *b, const fmpz_mpoly_ct
  * is the same factorization (unique up to the signs of the factors, which
  * den_expr normalises), found cheaply. */
 
-/* Append the irreducible factors of u (not constant) to the seeds,
+/* The irreducible factors of an atom's argument, kept with the atom: a
+ * factorization costs ~1.5 million instructions even for x^2 + y^2, and
+ * every term of a series is printed by a printer of its own. */
+struct alg_arg_factors {
+    int ok; /* FLINT factored it */
+    fmpz_mpoly_factor_t f;
+};
+
+void alg_arg_factors_free(struct alg_arg_factors *f, const hl_alg_ctx *ctx)
+{
+    if (f == NULL)
+        return;
+    fmpz_mpoly_factor_clear(f->f, ctx->mctx);
+    free(f);
+}
+
+static const struct alg_arg_factors *arg_factors(printer *pr, int k)
+{
+    /* a cache on the atom: the context is const to printing, not in memory */
+    alg_atom *at = (alg_atom *)&pr->ctx->atoms[k];
+    if (at->arg_factors == NULL) {
+        struct alg_arg_factors *af = hl_xmalloc(sizeof *af);
+        fmpz_mpoly_factor_init(af->f, pr->mc);
+        af->ok = fmpz_mpoly_factor(af->f, at->arg.num, pr->mc);
+        at->arg_factors = af;
+    }
+    return at->arg_factors;
+}
+
+/* Append the irreducible factors of atom k's argument to the seeds,
  * skipping one already there up to sign. */
-static void seeds_add(printer *pr, const fmpz_mpoly_t u)
+static void seeds_add(printer *pr, int k)
 {
     const fmpz_mpoly_ctx_struct *mc = pr->mc;
-    fmpz_mpoly_factor_t f;
+    const struct alg_arg_factors *af = arg_factors(pr, k);
+    if (!af->ok)
+        return;
     fmpz_mpoly_t neg;
-    fmpz_mpoly_factor_init(f, mc);
     fmpz_mpoly_init(neg, mc);
-    if (fmpz_mpoly_factor(f, u, mc))
-        for (slong i = 0; i < f->num; i++) {
-            int known = 0;
-            fmpz_mpoly_neg(neg, f->poly + i, mc);
-            for (slong j = 0; j < pr->seeds->num && !known; j++)
-                known = fmpz_mpoly_equal(pr->seeds->poly + j, f->poly + i, mc) ||
-                        fmpz_mpoly_equal(pr->seeds->poly + j, neg, mc);
-            if (!known) {
-                slong k = pr->seeds->num;
-                fmpz_mpoly_factor_fit_length(pr->seeds, k + 1, mc);
-                fmpz_mpoly_set(pr->seeds->poly + k, f->poly + i, mc);
-                fmpz_one(pr->seeds->exp + k);
-                pr->seeds->num = k + 1;
-            }
+    for (slong i = 0; i < af->f->num; i++) {
+        int known = 0;
+        fmpz_mpoly_neg(neg, af->f->poly + i, mc);
+        for (slong j = 0; j < pr->seeds->num && !known; j++)
+            known = fmpz_mpoly_equal(pr->seeds->poly + j, af->f->poly + i, mc) ||
+                    fmpz_mpoly_equal(pr->seeds->poly + j, neg, mc);
+        if (!known) {
+            slong n = pr->seeds->num;
+            fmpz_mpoly_factor_fit_length(pr->seeds, n + 1, mc);
+            fmpz_mpoly_set(pr->seeds->poly + n, af->f->poly + i, mc);
+            fmpz_one(pr->seeds->exp + n);
+            pr->seeds->num = n + 1;
         }
+    }
     fmpz_mpoly_clear(neg, mc);
-    fmpz_mpoly_factor_clear(f, mc);
 }
 
 static void seeds_make(printer *pr)
@@ -445,7 +473,7 @@ static void seeds_make(printer *pr)
     for (int k = 0; k < pr->ctx->natoms; k++) {
         const alg_atom *at = &pr->ctx->atoms[k];
         if (at->kind != ATOM_PI && !fmpz_mpoly_is_fmpz(at->arg.num, pr->mc))
-            seeds_add(pr, at->arg.num);
+            seeds_add(pr, k);
     }
 }
 
