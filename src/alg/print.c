@@ -31,7 +31,6 @@
 #include "alg/alg_internal.h"
 #include <flint/fmpz_mpoly_factor.h>
 #include "base/buf.h"
-#include "base/memo.h"
 #include "expr/print_impl.h"
 
 #define PULL_MAX_TERMS 64
@@ -48,7 +47,7 @@ typedef struct printer {
     int step;             /* the series symbol, or -1 */
     const hl_expr **atom; /* memo: expression of each atom */
     const hl_expr **pow;  /* memo: var_pow(v, e) at [v * POW_MEMO_MAX + e] */
-    hl_memo text_len;     /* memo: printed length (text) of each node measured */
+    hl_buf scratch;       /* text_len's: reused */
     int seeded;           /* seeds made (seeds_make) */
     fmpz_mpoly_factor_t seeds; /* irreducibles tried first on a denominator */
 } printer;
@@ -305,10 +304,9 @@ static void plain_append(printer *pr, terms *L, const fmpz_mpoly_t p, const fmpz
     free(exps);
 }
 
-/* The two forms of rule 4 share their monomials: measured once (memo). */
 static size_t text_len(printer *pr, const hl_expr *e)
 {
-    return hl_expr_print_len(e, HL_STYLE_TEXT, &pr->text_len);
+    return hl_expr_print_len(e, HL_STYLE_TEXT, &pr->scratch);
 }
 
 /* p/c (c > 0) as terms; with a common factor f = content/c != 1 pulled out
@@ -832,12 +830,12 @@ const hl_expr *hl_alg_to_expr(const hl_alg *a, const hl_alg_ctx *ctx, hl_pool *p
     pr.step = ctx->step;
     pr.atom = hl_xcalloc((size_t)ctx->natoms + 1, sizeof *pr.atom);
     pr.pow = hl_xcalloc((size_t)pr.nv * POW_MEMO_MAX + 1, sizeof *pr.pow);
-    hl_memo_init(&pr.text_len);
+    hl_buf_init(&pr.scratch);
     pr.seeded = 0;
     fmpz_mpoly_factor_init(pr.seeds, pr.mc);
     const hl_expr *e = frac_expr(&pr, a);
     fmpz_mpoly_factor_clear(pr.seeds, pr.mc);
-    hl_memo_clear(&pr.text_len);
+    hl_buf_clear(&pr.scratch);
     free(pr.pow);
     free(pr.atom);
     return e;

@@ -21,7 +21,6 @@
 #include <string.h>
 
 #include "base/buf.h"
-#include "base/memo.h"
 #include "expr/print_impl.h"
 #include "expr/prec.h"
 #include "expr/sympy_names.h"
@@ -170,7 +169,6 @@ typedef struct pieces {
 #define NODE(x) ((piece){(x), NULL})
 #define TEXT(s) ((piece){NULL, (s)})
 #define IF_TEXT(c, s) ((piece){NULL, (c) ? (s) : NULL})
-#define IF_NODE(c, x) ((piece){(c) ? (x) : NULL, NULL})
 
 /* Push p[0..n-1] so that p[0] is printed first. */
 static void push(pieces *S, int n, const piece *p)
@@ -556,47 +554,10 @@ char *hl_expr_print_within(const hl_expr *e, hl_style style, double max_nodes)
 
 /* ---- printed length ---------------------------------------------------------- */
 
-/* What a node prints does not depend on where it stands (its parent writes
- * the parentheses around it), so the length of its printed form is what it
- * writes itself plus the lengths of the pieces it pushes: its operands',
- * measured before it (post-order, without recursion) and kept in the memo. */
-static size_t node_len(const hl_expr *e, hl_style st, const hl_memo *memo, hl_buf *scratch,
-                       pieces *S)
+size_t hl_expr_print_len(const hl_expr *e, hl_style st, hl_buf *scratch)
 {
-    scratch->len = 0;
-    S->n = 0;
-    printer_of(st)(scratch, S, st, e);
-    size_t n = scratch->len;
-    for (size_t i = 0; i < S->n; i++)
-        n += S->p[i].text != NULL ? strlen(S->p[i].text) : (size_t)hl_memo_get(memo, S->p[i].e)->l;
-    return n;
-}
-
-size_t hl_expr_print_len(const hl_expr *e, hl_style st, hl_memo *memo)
-{
-    hl_buf scratch;
-    pieces S = {NULL, 0, 0}, todo = {NULL, 0, 0}; /* todo: a node, then NULL once its
-                                                      operands are pushed */
-    hl_buf_init(&scratch);
-    PUSH(&todo, NODE(e));
-    while (todo.n > 0) {
-        piece *top = &todo.p[todo.n - 1];
-        if (hl_memo_get(memo, top->e) != NULL) {
-            todo.n--;
-        } else if (top->text == NULL) {
-            top->text = ""; /* operands pushed: measure it when it is on top again */
-            const hl_expr *a = top->e->a, *b = top->e->b;
-            PUSH(&todo, IF_NODE(b != NULL && hl_memo_get(memo, b) == NULL, b),
-                 IF_NODE(a != NULL && hl_memo_get(memo, a) == NULL, a));
-        } else {
-            const hl_expr *x = top->e;
-            todo.n--;
-            long n = (long)node_len(x, st, memo, &scratch, &S);
-            hl_memo_put(memo, x)->l = n;
-        }
-    }
-    hl_buf_clear(&scratch);
-    free(S.p);
-    free(todo.p);
-    return (size_t)hl_memo_get(memo, e)->l;
+    scratch->len = 0; /* the text is written (and thrown away): its length is
+                       * all that is asked, and the buffer is reused */
+    print_all(scratch, e, st, printer_of(st), HUGE_VAL);
+    return scratch->len;
 }

@@ -5,12 +5,11 @@
 
 #include <stddef.h>
 
-#include "base/memo.h"
+#include "base/buf.h"
 #include "hamlie/expr.h"
 
-/* strlen(hl_expr_print(e, style)) without writing it out: each node is
- * measured once and its length kept in memo (value .l), so forms that share
- * subexpressions cost only their new nodes.  One memo serves one style. */
-size_t hl_expr_print_len(const hl_expr *e, hl_style style, hl_memo *memo);
+/* strlen(hl_expr_print(e, style)), written into scratch (an hl_buf kept
+ * by the caller, so that many lengths cost no allocation). */
+size_t hl_expr_print_len(const hl_expr *e, hl_style style, hl_buf *scratch);
 
 #endif
