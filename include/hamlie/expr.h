@@ -169,6 +169,11 @@ typedef enum hl_style {
  * hl_expr_tree_size against HL_PRINT_MAX_NODES first. */
 char *hl_expr_print(const hl_expr *e, hl_style style);
 
+/* hl_expr_print, or NULL when the printed form has more than max_nodes
+ * nodes (hl_expr_tree_size > max_nodes): the print stops there, so a
+ * caller can print and check the size in one pass. */
+char *hl_expr_print_within(const hl_expr *e, hl_style style, double max_nodes);
+
 /* The number of nodes of e written out as a tree, a shared node counted
  * each time it is referenced: the size of its printed form in operands and
  * operators (exponential in the DAG's depth at worst, hence a double). */

@@ -42,6 +42,7 @@ typedef struct alg_atom {
     unsigned char *dep;    /* dep[v]: does it depend on base symbol v? */
     hl_alg *dcache;        /* d(atom)/d(base v), valid when dknown[v] */
     unsigned char *dknown;
+    struct alg_arg_factors *arg_factors; /* print.c: arg.num factored, NULL until asked */
 } alg_atom;
 
 struct hl_alg_ctx {
@@ -64,6 +65,9 @@ static inline const alg_atom *alg_var_atom(const hl_alg_ctx *ctx, int v)
 {
     return v >= ctx->nbase ? &ctx->atoms[v - ctx->nbase] : NULL;
 }
+
+/* ---- print.c ---- */
+void alg_arg_factors_free(struct alg_arg_factors *f, const hl_alg_ctx *ctx); /* NULL: no-op */
 
 /* ---- ctx.c ---- */
 /* Find or make the atom (kind, q, arg); sets *var.  arg must be canonical

@@ -43,6 +43,7 @@ static void atom_clear(alg_atom *at, hl_alg_ctx *ctx)
     free(at->dcache);
     free(at->dknown);
     free(at->dep);
+    alg_arg_factors_free(at->arg_factors, ctx);
 }
 
 void hl_alg_ctx_free(hl_alg_ctx *ctx)

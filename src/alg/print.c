@@ -31,8 +31,13 @@
 #include "alg/alg_internal.h"
 #include <flint/fmpz_mpoly_factor.h>
 #include "base/buf.h"
+#include "expr/print_impl.h"
 
 #define PULL_MAX_TERMS 64
+
+/* var^e for e below this is built once per print and reused (a large
+ * polynomial names the same few powers in every term). */
+#define POW_MEMO_MAX 32
 
 typedef struct printer {
     const hl_alg_ctx *ctx;
@@ -41,6 +46,10 @@ typedef struct printer {
     int nv;               /* variables of the mpoly context */
     int step;             /* the series symbol, or -1 */
     const hl_expr **atom; /* memo: expression of each atom */
+    const hl_expr **pow;  /* memo: var_pow(v, e) at [v * POW_MEMO_MAX + e] */
+    hl_buf scratch;       /* text_len's: reused */
+    int seeded;           /* seeds made (seeds_make) */
+    fmpz_mpoly_factor_t seeds; /* irreducibles tried first on a denominator */
 } printer;
 
 /* A term of a sum: its magnitude and whether it is subtracted. */
@@ -111,9 +120,8 @@ typedef struct tkey {
     slong i;         /* stored position */
 } tkey;
 
-static void term_key(tkey *k, printer *pr, ulong *exp, const fmpz_mpoly_t p, slong i)
+static void term_key(tkey *k, printer *pr, const ulong *exp, slong i)
 {
-    fmpz_mpoly_get_term_exp_ui(exp, p, i, pr->mc);
     k->step = exp[pr->step];
     k->deg = 0;
     for (int v = 0; v < pr->nv; v++)
@@ -132,8 +140,18 @@ static int tkey_cmp(const void *a, const void *b)
     return (x->i > y->i) - (x->i < y->i);
 }
 
+/* The exponent vectors of the terms of p, nv each (malloc'd): read once,
+ * for the order and for the monomials. */
+static ulong *term_exps(printer *pr, const fmpz_mpoly_t p)
+{
+    ulong *exps = hl_xmalloc((size_t)(p->length * pr->nv + 1) * sizeof *exps);
+    for (slong i = 0; i < p->length; i++)
+        fmpz_mpoly_get_term_exp_ui(exps + i * pr->nv, p, i, pr->mc);
+    return exps;
+}
+
 /* Stored positions of the terms of p in printing order (malloc'd). */
-static slong *term_order(printer *pr, const fmpz_mpoly_t p)
+static slong *term_order(printer *pr, const fmpz_mpoly_t p, const ulong *exps)
 {
     slong n = p->length, *perm = hl_xmalloc((size_t)(n + 1) * sizeof *perm);
     if (pr->step < 0) {
@@ -141,15 +159,13 @@ static slong *term_order(printer *pr, const fmpz_mpoly_t p)
             perm[i] = i;
         return perm;
     }
-    ulong *exp = hl_xmalloc((size_t)pr->nv * sizeof *exp);
     tkey *k = hl_xmalloc((size_t)(n + 1) * sizeof *k);
     for (slong i = 0; i < n; i++)
-        term_key(&k[i], pr, exp, p, i);
+        term_key(&k[i], pr, exps + i * pr->nv, i);
     qsort(k, (size_t)n, sizeof *k, tkey_cmp);
     for (slong i = 0; i < n; i++)
         perm[i] = k[i].i;
     free(k);
-    free(exp);
     return perm;
 }
 
@@ -160,9 +176,11 @@ static slong first_term(printer *pr, const fmpz_mpoly_t p)
         return 0;
     ulong *exp = hl_xmalloc((size_t)pr->nv * sizeof *exp);
     tkey best, k;
-    term_key(&best, pr, exp, p, 0);
+    fmpz_mpoly_get_term_exp_ui(exp, p, 0, pr->mc);
+    term_key(&best, pr, exp, 0);
     for (slong i = 1; i < p->length; i++) {
-        term_key(&k, pr, exp, p, i);
+        fmpz_mpoly_get_term_exp_ui(exp, p, i, pr->mc);
+        term_key(&k, pr, exp, i);
         if (tkey_cmp(&k, &best) < 0)
             best = k;
     }
@@ -197,8 +215,20 @@ static const hl_expr *atom_expr(printer *pr, int k)
     return e;
 }
 
-/* v^e for a variable. */
+static const hl_expr *var_pow_new(printer *pr, int v, ulong e);
+
+/* v^e for a variable (e > 0). */
 static const hl_expr *var_pow(printer *pr, int v, ulong e)
+{
+    if (e >= POW_MEMO_MAX)
+        return var_pow_new(pr, v, e);
+    const hl_expr **slot = &pr->pow[v * POW_MEMO_MAX + (int)e];
+    if (*slot == NULL)
+        *slot = var_pow_new(pr, v, e);
+    return *slot;
+}
+
+static const hl_expr *var_pow_new(printer *pr, int v, ulong e)
 {
     const hl_alg_ctx *ctx = pr->ctx;
     if (v < ctx->nbase) {
@@ -215,14 +245,11 @@ static const hl_expr *var_pow(printer *pr, int v, ulong e)
     return e == 1 ? x : hl_pow(pr->pool, x, hl_num_si(pr->pool, (long)e));
 }
 
-/* |c| times the monomial of term i of p, built left to right as it is read
- * (3*D*x*y/2 is (((3*D)*x)*y)/2), the series symbol first. */
-static const hl_expr *term_mag(printer *pr, const fmpq_t c, const fmpz_mpoly_t p, slong i)
+/* |c| times the monomial with exponents exp, built left to right as it is
+ * read (3*D*x*y/2 is (((3*D)*x)*y)/2), the series symbol first. */
+static const hl_expr *term_mag(printer *pr, const fmpq_t c, const ulong *exp)
 {
     hl_pool *pool = pr->pool;
-    /* own copy: printing an atom's argument reuses the printer */
-    ulong *exp = hl_xmalloc((size_t)pr->nv * sizeof *exp);
-    fmpz_mpoly_get_term_exp_ui(exp, p, i, pr->mc);
     int constant = 1;
     for (int v = 0; v < pr->nv; v++)
         constant &= exp[v] == 0;
@@ -250,7 +277,6 @@ static const hl_expr *term_mag(printer *pr, const fmpq_t c, const fmpz_mpoly_t p
             m = hl_div(pool, m, hl_num_fmpq(pool, n));
         }
     }
-    free(exp);
     fmpq_clear(a);
     fmpq_clear(n);
     return m;
@@ -261,7 +287,9 @@ static const hl_expr *term_mag(printer *pr, const fmpq_t c, const fmpz_mpoly_t p
 /* The terms of p/c (c > 0), each with its own coefficient. */
 static void plain_append(printer *pr, terms *L, const fmpz_mpoly_t p, const fmpz_t c)
 {
-    slong *perm = term_order(pr, p);
+    /* own exponents: printing an atom's argument reuses the printer */
+    ulong *exps = term_exps(pr, p);
+    slong *perm = term_order(pr, p, exps);
     fmpq_t q;
     fmpq_init(q);
     for (slong j = 0; j < p->length; j++) {
@@ -269,18 +297,16 @@ static void plain_append(printer *pr, terms *L, const fmpz_mpoly_t p, const fmpz
         fmpz_set(fmpq_numref(q), p->coeffs + i);
         fmpz_set(fmpq_denref(q), c);
         fmpq_canonicalise(q);
-        terms_push(L, term_mag(pr, q, p, i), fmpq_sgn(q) < 0);
+        terms_push(L, term_mag(pr, q, exps + i * pr->nv), fmpq_sgn(q) < 0);
     }
     fmpq_clear(q);
     free(perm);
+    free(exps);
 }
 
-static size_t text_len(const hl_expr *e)
+static size_t text_len(printer *pr, const hl_expr *e)
 {
-    char *s = hl_expr_print(e, HL_STYLE_TEXT);
-    size_t n = strlen(s);
-    free(s);
-    return n;
+    return hl_expr_print_len(e, HL_STYLE_TEXT, &pr->scratch);
 }
 
 /* p/c (c > 0) as terms; with a common factor f = content/c != 1 pulled out
@@ -321,7 +347,7 @@ static void poly_append(printer *pr, terms *L, const fmpz_mpoly_t p, const fmpz_
             mag = hl_div(pool, mag, hl_num_fmpq(pool, k));
         }
         const hl_expr *pulled = neg ? negate_first(pool, mag) : mag;
-        if (text_len(pulled) < text_len(terms_join(pr, L, start))) {
+        if (text_len(pr, pulled) < text_len(pr, terms_join(pr, L, start))) {
             L->n = start;
             terms_push(L, mag, neg);
         }
@@ -372,6 +398,169 @@ static int factor_before(const dfactor *a, const dfactor *b, const fmpz_mpoly_ct
     return fmpz_mpoly_cmp(a->poly, b->poly, mc) > 0;
 }
 
+/* ---- factoring denominators ---------------------------------------------------
+ * Denominators are mostly powers of the atoms' arguments (Kepler's
+ * (x^2 + y^2)^k): fmpz_mpoly_factor took ~2 million instructions on each,
+ * and a gcd with the numerator about as much.  So the irreducible factors
+ * of the atoms' arguments (factored once per print) are tried first, by
+ * division, and only a cofactor left over is factored in full.  The result
+ * is the same factorization (unique up to the signs of the factors, which
+ * den_expr normalises), found cheaply. */
+
+/* The irreducible factors of an atom's argument, kept with the atom: a
+ * factorization costs ~1.5 million instructions even for x^2 + y^2, and
+ * every term of a series is printed by a printer of its own. */
+struct alg_arg_factors {
+    int ok; /* FLINT factored it */
+    fmpz_mpoly_factor_t f;
+};
+
+void alg_arg_factors_free(struct alg_arg_factors *f, const hl_alg_ctx *ctx)
+{
+    if (f == NULL)
+        return;
+    fmpz_mpoly_factor_clear(f->f, ctx->mctx);
+    free(f);
+}
+
+static const struct alg_arg_factors *arg_factors(printer *pr, int k)
+{
+    /* a cache on the atom: the context is const to printing, not in memory */
+    alg_atom *at = (alg_atom *)&pr->ctx->atoms[k];
+    if (at->arg_factors == NULL) {
+        struct alg_arg_factors *af = hl_xmalloc(sizeof *af);
+        fmpz_mpoly_factor_init(af->f, pr->mc);
+        af->ok = fmpz_mpoly_factor(af->f, at->arg.num, pr->mc);
+        at->arg_factors = af;
+    }
+    return at->arg_factors;
+}
+
+/* Append the irreducible factors of atom k's argument to the seeds,
+ * skipping one already there up to sign. */
+static void seeds_add(printer *pr, int k)
+{
+    const fmpz_mpoly_ctx_struct *mc = pr->mc;
+    const struct alg_arg_factors *af = arg_factors(pr, k);
+    if (!af->ok)
+        return;
+    fmpz_mpoly_t neg;
+    fmpz_mpoly_init(neg, mc);
+    for (slong i = 0; i < af->f->num; i++) {
+        int known = 0;
+        fmpz_mpoly_neg(neg, af->f->poly + i, mc);
+        for (slong j = 0; j < pr->seeds->num && !known; j++)
+            known = fmpz_mpoly_equal(pr->seeds->poly + j, af->f->poly + i, mc) ||
+                    fmpz_mpoly_equal(pr->seeds->poly + j, neg, mc);
+        if (!known) {
+            slong n = pr->seeds->num;
+            fmpz_mpoly_factor_fit_length(pr->seeds, n + 1, mc);
+            fmpz_mpoly_set(pr->seeds->poly + n, af->f->poly + i, mc);
+            fmpz_one(pr->seeds->exp + n);
+            pr->seeds->num = n + 1;
+        }
+    }
+    fmpz_mpoly_clear(neg, mc);
+}
+
+static void seeds_make(printer *pr)
+{
+    if (pr->seeded)
+        return;
+    pr->seeded = 1;
+    for (int k = 0; k < pr->ctx->natoms; k++) {
+        const alg_atom *at = &pr->ctx->atoms[k];
+        if (at->kind != ATOM_PI && !fmpz_mpoly_is_fmpz(at->arg.num, pr->mc))
+            seeds_add(pr, k);
+    }
+}
+
+/* Push factor^e onto f. */
+static void factor_push(fmpz_mpoly_factor_t f, const fmpz_mpoly_t factor, slong e,
+                        const fmpz_mpoly_ctx_t mc)
+{
+    fmpz_mpoly_factor_fit_length(f, f->num + 1, mc);
+    fmpz_mpoly_set(f->poly + f->num, factor, mc);
+    fmpz_set_si(f->exp + f->num, e);
+    f->num++;
+}
+
+/* d (not constant) = f->constant * prod f->poly[i]^f->exp[i], irreducible
+ * factors; 0 if FLINT could not factor (f then untouched). */
+static int den_factor(fmpz_mpoly_factor_t f, printer *pr, const fmpz_mpoly_t d)
+{
+    const fmpz_mpoly_ctx_struct *mc = pr->mc;
+    fmpz_mpoly_t rest, t;
+    fmpz_mpoly_init(rest, mc);
+    fmpz_mpoly_init(t, mc);
+    fmpz_mpoly_set(rest, d, mc);
+    seeds_make(pr);
+    fmpz_mpoly_factor_t found;
+    fmpz_mpoly_factor_init(found, mc);
+    for (slong i = 0; i < pr->seeds->num && !fmpz_mpoly_is_fmpz(rest, mc); i++) {
+        slong e = 0;
+        while (!fmpz_mpoly_is_fmpz(rest, mc) &&
+               fmpz_mpoly_divides(t, rest, pr->seeds->poly + i, mc)) {
+            fmpz_mpoly_swap(rest, t, mc);
+            e++;
+        }
+        if (e > 0)
+            factor_push(found, pr->seeds->poly + i, e, mc);
+    }
+    int ok = 1;
+    if (fmpz_mpoly_is_fmpz(rest, mc)) {
+        fmpz_mpoly_get_fmpz(found->constant, rest, mc);
+    } else if ((ok = fmpz_mpoly_factor(f, rest, mc))) { /* a cofactor: in full */
+        fmpz_set(found->constant, f->constant);
+        for (slong i = 0; i < f->num; i++)
+            factor_push(found, f->poly + i, fmpz_get_si(f->exp + i), mc);
+    }
+    if (ok)
+        fmpz_mpoly_factor_swap(f, found, mc);
+    fmpz_mpoly_factor_clear(found, mc);
+    fmpz_mpoly_clear(rest, mc);
+    fmpz_mpoly_clear(t, mc);
+    return ok;
+}
+
+/* gcd(n, d) with d not constant, as fmpz_mpoly_gcd gives it (positive
+ * leading coefficient), from d's factorization: the content's gcd times
+ * each factor of d to the power it divides n (up to its power in d). */
+static void den_gcd(fmpz_mpoly_t g, printer *pr, const fmpz_mpoly_t n, const fmpz_mpoly_t d)
+{
+    const fmpz_mpoly_ctx_struct *mc = pr->mc;
+    fmpz_mpoly_factor_t f;
+    fmpz_mpoly_factor_init(f, mc);
+    if (fmpz_mpoly_is_zero(n, mc) || !den_factor(f, pr, d)) {
+        if (!fmpz_mpoly_gcd(g, n, d, mc))
+            fmpz_mpoly_one(g, mc); /* as before: no reduction */
+        fmpz_mpoly_factor_clear(f, mc);
+        return;
+    }
+    fmpz_t c;
+    fmpz_init(c);
+    _fmpz_vec_content(c, n->coeffs, n->length);
+    fmpz_gcd(c, c, f->constant); /* the factors are primitive: f->constant is d's content */
+    fmpz_mpoly_set_fmpz(g, c, mc);
+    fmpz_mpoly_t rest, t;
+    fmpz_mpoly_init(rest, mc);
+    fmpz_mpoly_init(t, mc);
+    fmpz_mpoly_set(rest, n, mc);
+    for (slong i = 0; i < f->num; i++) {
+        slong e = fmpz_get_si(f->exp + i);
+        for (slong k = 0; k < e && fmpz_mpoly_divides(t, rest, f->poly + i, mc); k++) {
+            fmpz_mpoly_swap(rest, t, mc);
+            fmpz_mpoly_mul(g, g, f->poly + i, mc);
+        }
+    }
+    if (fmpz_sgn(g->coeffs + 0) < 0) /* coeffs[0]: the leading term */
+        fmpz_mpoly_neg(g, g, mc);
+    fmpz_clear(c);
+    fmpz_mpoly_clear(rest, mc);
+    fmpz_mpoly_clear(t, mc);
+    fmpz_mpoly_factor_clear(f, mc);
+}
+
 /* The expression of d * prod_h u_h^(e_h - 1/2) with its sign in *sign.
  * d != 0; the factors of d are made unit-normal on their first printed term
  * (the roots' arguments keep their sign: they are what the sqrt shows). */
@@ -384,7 +573,7 @@ static const hl_expr *den_expr(int *sign, printer *pr, const fmpz_mpoly_t d,
     fmpz_mpoly_factor_init(f, mc);
     if (fmpz_mpoly_is_fmpz(d, mc)) {
         fmpz_mpoly_get_fmpz(f->constant, d, mc);
-    } else if (!fmpz_mpoly_factor(f, d, mc)) {
+    } else if (!den_factor(f, pr, d)) {
         fmpz_mpoly_factor_fit_length(f, 1, mc);
         fmpz_one(f->constant);
         fmpz_mpoly_set(f->poly + 0, d, mc);
@@ -455,7 +644,18 @@ static void part_append(printer *pr, terms *L, const fmpz_mpoly_t n0, const int 
     fmpz_mpoly_init(t, mc);
     fmpz_mpoly_set(n, n0, mc);
     fmpz_mpoly_set(d, d0, mc);
-    if (reduce && fmpz_mpoly_gcd(g, n, d, mc) && !fmpz_mpoly_is_one(g, mc)) {
+    if (reduce && !fmpz_mpoly_is_fmpz(d, mc)) {
+        den_gcd(g, pr, n, d);
+#ifdef HL_CHECK_DEN_GCD
+        fmpz_mpoly_t g2;
+        fmpz_mpoly_init(g2, mc);
+        fmpz_mpoly_gcd(g2, n, d, mc);
+        if (!fmpz_mpoly_equal(g, g2, mc))
+            abort();
+        fmpz_mpoly_clear(g2, mc);
+#endif
+    }
+    if (reduce && !fmpz_mpoly_is_fmpz(d, mc) && !fmpz_mpoly_is_one(g, mc)) {
         fmpz_mpoly_divides(n, n, g, mc);
         fmpz_mpoly_divides(d, d, g, mc);
     }
@@ -500,7 +700,9 @@ static void part_append(printer *pr, terms *L, const fmpz_mpoly_t n0, const int 
             fmpq_t c;
             fmpq_init(c);
             fmpz_set(fmpq_numref(c), n->coeffs + 0);
-            num = term_mag(pr, c, n, 0);
+            ulong *exp = term_exps(pr, n);
+            num = term_mag(pr, c, exp);
+            free(exp);
             fmpq_clear(c);
         } else {
             num = poly_expr(pr, n);
@@ -627,7 +829,14 @@ const hl_expr *hl_alg_to_expr(const hl_alg *a, const hl_alg_ctx *ctx, hl_pool *p
     pr.nv = alg_nvars(ctx);
     pr.step = ctx->step;
     pr.atom = hl_xcalloc((size_t)ctx->natoms + 1, sizeof *pr.atom);
+    pr.pow = hl_xcalloc((size_t)pr.nv * POW_MEMO_MAX + 1, sizeof *pr.pow);
+    hl_buf_init(&pr.scratch);
+    pr.seeded = 0;
+    fmpz_mpoly_factor_init(pr.seeds, pr.mc);
     const hl_expr *e = frac_expr(&pr, a);
+    fmpz_mpoly_factor_clear(pr.seeds, pr.mc);
+    hl_buf_clear(&pr.scratch);
+    free(pr.pow);
     free(pr.atom);
     return e;
 }

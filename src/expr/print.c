@@ -16,18 +16,37 @@
  * Both printers run on an explicit stack of pieces (a node to print or a
  * fixed text), not on the C stack: a node pushes what it prints, in order,
  * and a sum of 10^5 terms, a chain 10^5 deep, prints like any other. */
+#include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "base/buf.h"
+#include "expr/print_impl.h"
 #include "expr/prec.h"
+#include "expr/sympy_names.h"
 
 /* ---- numbers --------------------------------------------------------------- */
 
 static int num_is_int(const hl_expr *e) { return fmpz_is_one(fmpq_denref(e->num)); }
 static int num_sgn(const hl_expr *e) { return fmpz_sgn(fmpq_numref(e->num)); }
 
+/* Most numbers printed are small: those are written here, without the
+ * allocation and the GMP conversion fmpz_get_str costs (~500 instructions
+ * a number, a sixth of printing a large series). */
 static void put_fmpz(hl_buf *b, const fmpz_t x)
 {
+    if (!COEFF_IS_MPZ(*x)) {
+        char digits[24], *end = digits + sizeof digits, *d = end;
+        slong v = *x; /* |v| < 2^62: its negation cannot overflow */
+        ulong u = v < 0 ? (ulong)-v : (ulong)v;
+        do
+            *--d = (char)('0' + u % 10);
+        while ((u /= 10) != 0);
+        if (v < 0)
+            *--d = '-';
+        hl_buf_putn(b, d, (size_t)(end - d));
+        return;
+    }
     char *s = fmpz_get_str(NULL, 10, x);
     hl_buf_puts(b, s);
     flint_free(s);
@@ -117,44 +136,21 @@ static int paren_neg(hl_style st, const hl_expr *a)
     return st == HL_STYLE_TEXT && a->kind == HL_NUM;
 }
 
-/* Names sympify would not read as a plain symbol: Python keywords and
- * sympy's own names a physicist may well use.  Printed as Symbol('E'). */
-static const char *const sympy_reserved[] = {
-    "E", "I", "N", "O", "Q", "S", "oo", "nan", "zoo", "pi", "beta", "gamma", "zeta",
-    "lambda", "Li", "li", "re", "im", "ln", "arg", "sign", "Abs", "Max", "Min", "Eq",
-    "Ne", "Lt", "Gt", "Le", "Ge", "And", "Or", "Not", "Xor", "true", "false", "ff",
-    "rf", "erf", "erfc", "Ei", "Si", "Ci", "Chi", "Shi", "sec", "csc", "cot", "acot",
-    "asec", "acsc", "asinh", "acosh", "atanh", "acoth", "coth", "sech", "csch",
-    "atan2", "sinc", "floor", "ceiling", "frac", "gcd", "lcm", "prime", "Mod", "mod",
-    "Sum", "Product", "Integral", "Derivative", "Function", "Symbol", "Lambda",
-    "Matrix", "diff", "integrate", "limit", "series", "solve", "expand", "factor",
-    "simplify", "var", "symbols", "test", "det", "trace", "eye", "ones", "zeros",
-    "Poly", "poly", "field", "ring", "Id", "Add", "Mul", "Pow", "Float", "Rational",
-    "Integer", "Number", "Interval", "Union", "Range", "Tuple", "Dict", "Order",
-    "euler", "catalan", "bernoulli", "fibonacci", "lucas", "harmonic", "bell",
-    "digamma", "polygamma", "loggamma", "uppergamma", "lowergamma", "hyper",
-    "besselj", "bessely", "besseli", "besselk", "jn", "yn", "hermite", "legendre",
-    "laguerre", "chebyshevt", "chebyshevu", "root", "cbrt", "exp_polar", "Heaviside",
-    "DiracDelta", "KroneckerDelta", "LeviCivita", "Point", "Line", "Circle", "Plane",
-    "Ray", "Segment", "Triangle", "Polygon", "Curve", "Set", "FiniteSet", "EmptySet",
-    "Piecewise", "rad", "deg", "cos", "sin", "tan", "exp", "log", "sqrt", "atan",
-    "asin", "acos", "sinh", "cosh", "tanh", "and", "as", "assert", "async", "await",
-    "break", "class", "continue", "def", "del", "elif", "else", "except", "finally",
-    "for", "from", "global", "if", "import", "in", "is", "nonlocal", "not", "or",
-    "pass", "raise", "return", "try", "while", "with", "yield", "None", "True",
-    "False", "content", "degree", "div", "rem", "quo", "roots", "cancel", "apart",
-    "together", "residue", "lambdify", "sympify", "srepr", "latex", "plot", "ask",
-    "cse", "Dummy", "Wild", "evaluate", "real_root", "conjugate", "transpose",
-    "adjoint", "totient", "divisors", "refine", "nsimplify", "numer", "denom",
-    "EX", "QQ", "ZZ", "RR", "CC", "GF", "FF", "QQ_I", "ZZ_I", "Ynm", "Znm", "Eijk",
-};
+/* sympy_is_reserved: is name one sympify would not read as a plain symbol
+ * (a Python keyword or one of sympy's own names)?  Printed as Symbol('E').
+ * The table is sorted (byte order) so a lookup is a binary search: this is
+ * asked for every symbol printed, and a linear scan of ~250 strcmp was a
+ * third of the time of printing a large series. */
+
+static int cmp_name(const void *key, const void *entry)
+{
+    return strcmp(key, *(const char *const *)entry);
+}
 
 static int sympy_is_reserved(const char *name)
 {
-    for (size_t i = 0; i < sizeof sympy_reserved / sizeof *sympy_reserved; i++)
-        if (strcmp(name, sympy_reserved[i]) == 0)
-            return 1;
-    return 0;
+    return bsearch(name, hl_sympy_reserved, sizeof hl_sympy_reserved / sizeof *hl_sympy_reserved,
+                   sizeof *hl_sympy_reserved, cmp_name) != NULL;
 }
 
 /* ---- the stack of pieces still to print ----------------------------------- */
@@ -191,21 +187,28 @@ static void push(pieces *S, int n, const piece *p)
 /* e, in parentheses (open, close) when paren */
 #define GROUP(e, paren, open, close) IF_TEXT(paren, open), NODE(e), IF_TEXT(paren, close)
 
-/* Print from root: each node is handed to print_node, which writes what it
- * can at once and pushes the rest. */
-static void print_all(hl_buf *b, const hl_expr *root, hl_style st,
-                      void (*print_node)(hl_buf *b, pieces *S, hl_style st, const hl_expr *e))
+/* How a node prints: writes what it can at once, pushes the rest, and
+ * returns how many nodes of the tree it stands for (2 when it printed a
+ * child itself, as LaTeX's \sin^{2} q does). */
+typedef int print_fn(hl_buf *b, pieces *S, hl_style st, const hl_expr *e);
+
+/* Print from root, each node handed to print_node; 0 (and the print left
+ * unfinished) once more than max_nodes tree nodes were printed. */
+static int print_all(hl_buf *b, const hl_expr *root, hl_style st, print_fn *print_node,
+                     double max_nodes)
 {
     pieces S = {NULL, 0, 0};
+    double nodes = 0;
     PUSH(&S, NODE(root));
-    while (S.n > 0) {
+    while (S.n > 0 && nodes <= max_nodes) {
         piece p = S.p[--S.n];
         if (p.text != NULL)
             hl_buf_puts(b, p.text);
         else
-            print_node(b, &S, st, p.e);
+            nodes += print_node(b, &S, st, p.e);
     }
     free(S.p);
+    return nodes <= max_nodes;
 }
 
 /* ---- text, sympy, C: printing --------------------------------------------- */
@@ -243,7 +246,7 @@ static const char *op_text(hl_style st, hl_expr_kind k)
     }
 }
 
-static void print_plain(hl_buf *b, pieces *S, hl_style st, const hl_expr *e)
+static int print_plain(hl_buf *b, pieces *S, hl_style st, const hl_expr *e)
 {
     switch (e->kind) {
     case HL_NUM:
@@ -281,6 +284,7 @@ static void print_plain(hl_buf *b, pieces *S, hl_style st, const hl_expr *e)
              TEXT(op_text(st, e->kind)),
              GROUP(e->b, paren_right(st, e->kind, e->a, e->b), "(", ")"));
     }
+    return 1;
 }
 
 /* ---- LaTeX ------------------------------------------------------------------ */
@@ -468,7 +472,7 @@ static void latex_number(hl_buf *b, const hl_expr *e)
     hl_buf_putc(b, '}');
 }
 
-static void latex_node(hl_buf *b, pieces *S, hl_style st, const hl_expr *e)
+static int latex_node(hl_buf *b, pieces *S, hl_style st, const hl_expr *e)
 {
     (void)st;
     switch (e->kind) {
@@ -513,20 +517,47 @@ static void latex_node(hl_buf *b, pieces *S, hl_style st, const hl_expr *e)
     case HL_POW:
         if (latex_fun_power(e)) {
             latex_call(b, S, e->a->fun, e->a->a, e->b); /* \sin^{2} q */
-            break;
+            return 2;                                   /* e and its child e->a */
         }
         PUSH(S, GROUP(e->a, !latex_atom(e->a), "\\left(", "\\right)"), TEXT("^{"),
              NODE(e->b), TEXT("}"));
         break;
     }
+    return 1;
 }
 
 /* ---- entry ------------------------------------------------------------------ */
+
+static print_fn *printer_of(hl_style style)
+{
+    return style == HL_STYLE_LATEX ? latex_node : print_plain;
+}
 
 char *hl_expr_print(const hl_expr *e, hl_style style)
 {
     hl_buf b;
     hl_buf_init(&b);
-    print_all(&b, e, style, style == HL_STYLE_LATEX ? latex_node : print_plain);
+    print_all(&b, e, style, printer_of(style), HUGE_VAL);
     return hl_buf_take(&b);
+}
+
+char *hl_expr_print_within(const hl_expr *e, hl_style style, double max_nodes)
+{
+    hl_buf b;
+    hl_buf_init(&b);
+    if (!print_all(&b, e, style, printer_of(style), max_nodes)) {
+        hl_buf_clear(&b);
+        return NULL;
+    }
+    return hl_buf_take(&b);
+}
+
+/* ---- printed length ---------------------------------------------------------- */
+
+size_t hl_expr_print_len(const hl_expr *e, hl_style st, hl_buf *scratch)
+{
+    scratch->len = 0; /* the text is written (and thrown away): its length is
+                       * all that is asked, and the buffer is reused */
+    print_all(scratch, e, st, printer_of(st), HUGE_VAL);
+    return scratch->len;
 }

@@ -12,9 +12,18 @@
 #include "hamlie/report.h"
 
 /* A result too large to print is not printed: a note stands in its place,
- * and the context records it so that a command can refuse its output. */
+ * and the context records it so that a command can refuse its output.
+ * Most results are small: they are printed at once with a node budget (the
+ * print counts its nodes), and only one that overruns it pays for measuring
+ * its tree size, a walk with a hash memo that cost as much as the print. */
+#define PRINT_FIRST_NODES (1 << 20)
+_Static_assert(PRINT_FIRST_NODES <= HL_PRINT_MAX_NODES, "a first print within budget is small");
+
 static char *print_result(const hl_expr *e, hl_alg_ctx *ctx, hl_style style)
 {
+    char *s = hl_expr_print_within(e, style, PRINT_FIRST_NODES);
+    if (s != NULL)
+        return s;
     double nodes = hl_expr_tree_size(e);
     if (nodes > HL_PRINT_MAX_NODES) {
         hl_alg_ctx_note_unprinted(ctx, nodes);

@@ -7,10 +7,23 @@
 #include "base/buf.h"
 #include "hamlie/report.h"
 
+static int needs_escape(unsigned char c)
+{
+    return c < 0x20 || c == '"' || c == '\\';
+}
+
+/* Runs of characters that need no escape (nearly all of a formula) are
+ * copied in one piece, not a character at a time. */
 void hl_json_escape(hl_buf *b, const char *s)
 {
     hl_buf_putc(b, '"');
     for (const unsigned char *c = (const unsigned char *)s; *c; c++) {
+        const unsigned char *run = c;
+        while (*c && !needs_escape(*c))
+            c++; /* UTF-8 passes through: JSON is UTF-8 */
+        hl_buf_putn(b, (const char *)run, (size_t)(c - run));
+        if (*c == '\0')
+            break;
         switch (*c) {
         case '"': hl_buf_puts(b, "\\\""); break;
         case '\\': hl_buf_puts(b, "\\\\"); break;
@@ -20,10 +33,7 @@ void hl_json_escape(hl_buf *b, const char *s)
         case '\b': hl_buf_puts(b, "\\b"); break;
         case '\f': hl_buf_puts(b, "\\f"); break;
         default:
-            if (*c < 0x20)
-                hl_buf_printf(b, "\\u%04x", *c);
-            else
-                hl_buf_putc(b, (char)*c); /* UTF-8 passes through: JSON is UTF-8 */
+            hl_buf_printf(b, "\\u%04x", *c);
         }
     }
     hl_buf_putc(b, '"');

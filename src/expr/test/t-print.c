@@ -9,6 +9,7 @@
 
 #include "gen.h"
 #include "hl_test.h"
+#include "expr/sympy_names.h"
 #include "sx.h"
 
 static const struct {
@@ -112,6 +113,31 @@ static void check_table(void)
     for (size_t i = 0; i < sizeof names / sizeof *names; i++) {
         char *s = hl_symbol_latex(names[i].name);
         CHECK_STR(s, names[i].latex);
+        free(s);
+    }
+    hl_pool_free(pool);
+}
+
+/* Every reserved name prints as Symbol('name') (the lookup is a binary
+ * search: an entry out of order would be missed), names next to them do
+ * not, and the table is in strcmp order. */
+static void check_sympy_reserved(void)
+{
+    hl_pool *pool = hl_pool_new();
+    size_t n = sizeof hl_sympy_reserved / sizeof *hl_sympy_reserved;
+    for (size_t i = 0; i < n; i++) {
+        const char *name = hl_sympy_reserved[i];
+        if (i > 0)
+            CHECK_MSG(strcmp(hl_sympy_reserved[i - 1], name) < 0, "table out of order at %s", name);
+        char *s = hl_expr_print(hl_sym(pool, name), HL_STYLE_SYMPY), want[64];
+        snprintf(want, sizeof want, "Symbol('%s')", name);
+        CHECK_STR(s, want);
+        free(s);
+    }
+    static const char *const plain[] = {"A", "Ab", "Absx", "x", "px", "zz", "zzz", "e", "Ea"};
+    for (size_t i = 0; i < sizeof plain / sizeof *plain; i++) {
+        char *s = hl_expr_print(hl_sym(pool, plain[i]), HL_STYLE_SYMPY);
+        CHECK_STR(s, plain[i]);
         free(s);
     }
     hl_pool_free(pool);
@@ -263,6 +289,7 @@ static void check_c(const hl_expr **es, const double *vals, int n)
 int main(void)
 {
     check_table();
+    check_sympy_reserved();
     hl_pool *pool = hl_pool_new();
     const hl_expr *es[NSAMPLE];
     double vals[NSAMPLE];
