@@ -9,6 +9,7 @@
 #define HAMLIE_ALG_INTERNAL_H
 
 #include <flint/fmpz_mpoly.h>
+#include <flint/fmpz_mpoly_factor.h>
 #include <flint/flint.h>
 
 #include "hamlie/alg.h"
@@ -42,7 +43,7 @@ typedef struct alg_atom {
     unsigned char *dep;    /* dep[v]: does it depend on base symbol v? */
     hl_alg *dcache;        /* d(atom)/d(base v), valid when dknown[v] */
     unsigned char *dknown;
-    struct alg_arg_factors *arg_factors; /* print.c: arg.num factored, NULL until asked */
+    struct alg_arg_factors *arg_factors; /* arg.num factored, NULL until asked */
 } alg_atom;
 
 struct hl_alg_ctx {
@@ -67,7 +68,13 @@ static inline const alg_atom *alg_var_atom(const hl_alg_ctx *ctx, int v)
 }
 
 /* ---- print.c ---- */
-void alg_arg_factors_free(struct alg_arg_factors *f, const hl_alg_ctx *ctx); /* NULL: no-op */
+/* The irreducible factors of atom k's argument (ok: FLINT factored it),
+ * computed on first use and kept with the atom (ctx.c). */
+struct alg_arg_factors {
+    int ok;
+    fmpz_mpoly_factor_t f;
+};
+const struct alg_arg_factors *alg_atom_arg_factors(const hl_alg_ctx *ctx, int k);
 
 /* ---- ctx.c ---- */
 /* Find or make the atom (kind, q, arg); sets *var.  arg must be canonical

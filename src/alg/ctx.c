@@ -33,6 +33,31 @@ hl_alg_ctx *hl_alg_ctx_new(int nbase, const char *const *names, int max_atoms)
     return ctx;
 }
 
+/* The irreducible factors of an atom's argument, kept with the atom (the
+ * printer divides denominators by them first, alg/print.c): a factorization
+ * costs ~1.5 million instructions even for x^2 + y^2, and every term of a
+ * series is printed by a printer of its own.  The context is const to its
+ * users; the cache is not part of its value. */
+const struct alg_arg_factors *alg_atom_arg_factors(const hl_alg_ctx *ctx, int k)
+{
+    alg_atom *at = (alg_atom *)&ctx->atoms[k];
+    if (at->arg_factors == NULL) {
+        struct alg_arg_factors *af = hl_xmalloc(sizeof *af);
+        fmpz_mpoly_factor_init(af->f, ctx->mctx);
+        af->ok = fmpz_mpoly_factor(af->f, at->arg.num, ctx->mctx);
+        at->arg_factors = af;
+    }
+    return at->arg_factors;
+}
+
+static void arg_factors_free(struct alg_arg_factors *f, const hl_alg_ctx *ctx)
+{
+    if (f == NULL)
+        return;
+    fmpz_mpoly_factor_clear(f->f, ctx->mctx);
+    free(f);
+}
+
 static void atom_clear(alg_atom *at, hl_alg_ctx *ctx)
 {
     hl_alg_clear(&at->arg, ctx);
@@ -43,7 +68,7 @@ static void atom_clear(alg_atom *at, hl_alg_ctx *ctx)
     free(at->dcache);
     free(at->dknown);
     free(at->dep);
-    alg_arg_factors_free(at->arg_factors, ctx);
+    arg_factors_free(at->arg_factors, ctx);
 }
 
 void hl_alg_ctx_free(hl_alg_ctx *ctx)

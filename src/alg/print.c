@@ -407,41 +407,12 @@ static int factor_before(const dfactor *a, const dfactor *b, const fmpz_mpoly_ct
  * is the same factorization (unique up to the signs of the factors, which
  * den_expr normalises), found cheaply. */
 
-/* The irreducible factors of an atom's argument, kept with the atom: a
- * factorization costs ~1.5 million instructions even for x^2 + y^2, and
- * every term of a series is printed by a printer of its own. */
-struct alg_arg_factors {
-    int ok; /* FLINT factored it */
-    fmpz_mpoly_factor_t f;
-};
-
-void alg_arg_factors_free(struct alg_arg_factors *f, const hl_alg_ctx *ctx)
-{
-    if (f == NULL)
-        return;
-    fmpz_mpoly_factor_clear(f->f, ctx->mctx);
-    free(f);
-}
-
-static const struct alg_arg_factors *arg_factors(printer *pr, int k)
-{
-    /* a cache on the atom: the context is const to printing, not in memory */
-    alg_atom *at = (alg_atom *)&pr->ctx->atoms[k];
-    if (at->arg_factors == NULL) {
-        struct alg_arg_factors *af = hl_xmalloc(sizeof *af);
-        fmpz_mpoly_factor_init(af->f, pr->mc);
-        af->ok = fmpz_mpoly_factor(af->f, at->arg.num, pr->mc);
-        at->arg_factors = af;
-    }
-    return at->arg_factors;
-}
-
 /* Append the irreducible factors of atom k's argument to the seeds,
  * skipping one already there up to sign. */
 static void seeds_add(printer *pr, int k)
 {
     const fmpz_mpoly_ctx_struct *mc = pr->mc;
-    const struct alg_arg_factors *af = arg_factors(pr, k);
+    const struct alg_arg_factors *af = alg_atom_arg_factors(pr->ctx, k);
     if (!af->ok)
         return;
     fmpz_mpoly_t neg;

@@ -58,13 +58,21 @@ RUN=(run -H '(p^2+x^2)/2' --scheme verlet --dt 0.001 --t 1000 --init x=1,p=0 --n
 gccjit_here=0
 ldconfig -p 2>/dev/null | grep -q 'libgccjit\.so\.0' &&
     ! grep -qs 'HAMLIE_GCCJIT:BOOL=OFF' "$(dirname "$HAMLIE")/CMakeCache.txt" && gccjit_here=1
+# an empty cache of compiled code (docs/architecture.md): the first run compiles
+export HAMLIE_CACHE_DIR=$tmp/jit-cache
 traced 0 "${RUN[@]}"
 grep -v '"wall_time_s"' "$tmp/out" >native.json
 if [ $gccjit_here = 1 ]; then
     yes_loaded 'libgccjit' "a run of 10^6 steps"
     if grep -q 'note:' "$tmp/err"; then bad "a note with libgccjit installed: $(cat "$tmp/err")"; else ok; fi
+    # the second run finds the code in the cache: libgccjit is not loaded at all
+    traced 0 "${RUN[@]}"
+    not_loaded 'libgccjit' "a second run of 10^6 steps (cache warm)"
+    grep -v '"wall_time_s"' "$tmp/out" >warm.json
+    cmp -s native.json warm.json && ok || bad "the warm run printed other numbers"
 fi
-HAMLIE_GCCJIT_LIB=/nonexistent/libgccjit.so.0 run 0 "${RUN[@]}"
+# without libgccjit (and without the cache, which would not need it)
+HAMLIE_CACHE=off HAMLIE_GCCJIT_LIB=/nonexistent/libgccjit.so.0 run 0 "${RUN[@]}"
 grep -v '"wall_time_s"' "$tmp/out" >interpreted.json
 if [ -s native.json ] && cmp -s native.json interpreted.json; then ok; else
     bad "without libgccjit the run printed other numbers:"; diff native.json interpreted.json | head >&2; fi
