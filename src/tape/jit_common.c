@@ -10,10 +10,13 @@
  * (pow(x, 2) -> x*x is not exact for glibc's pow); contraction into FMA is
  * switched off (-ffp-contract=off).  sqrt is GCC's builtin (sqrtsd,
  * correctly rounded like libm's).  When compiling pays: cost.c. */
+#include <errno.h>
 #include <pthread.h>
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "base/buf.h"
 #include "tape/jit_cache_impl.h"
@@ -75,9 +78,12 @@ gcc_jit_function *hl_jit_import_sincos(jit *J)
  * own handlers for SIGINT, SIGHUP, SIGTERM and SIGPIPE (GCC's fatal_signal,
  * which kills the process) and SIGCHLD, and leaves them there: a caller's
  * Ctrl-C handler (hamlie run stops cleanly on it) was gone after the first
- * compilation.  They are put back after each compilation; the signals that
- * stop a job are held meanwhile and reach the caller's handler after. */
-int hl_jit_run_compiler(gcc_jit_context *c, const char *path, gcc_jit_result **res)
+ * compilation.  They are put back after each compilation, and the signals
+ * that stop a job are held meanwhile.  Held is not enough: the driver probes
+ * each disposition by setting it to SIG_IGN first, and that discards a held
+ * signal, so a Ctrl-C at the wrong moment was lost and the job went on.
+ * Hence compile_in_child below, wherever the code goes to a file. */
+static int compile_holding_signals(gcc_jit_context *c, const char *path, gcc_jit_result **res)
 {
     static const int sigs[] = {SIGINT, SIGHUP, SIGTERM, SIGPIPE, SIGCHLD};
     enum { NSIGS = sizeof sigs / sizeof sigs[0] };
@@ -102,6 +108,40 @@ int hl_jit_run_compiler(gcc_jit_context *c, const char *path, gcc_jit_result **r
         sigaction(sigs[i], &saved[i], NULL);
     pthread_sigmask(SIG_SETMASK, &prev, NULL);
     return failed ? -1 : 0;
+}
+
+/* Compiles c into path in a child process, whose signal handlers are its
+ * own: the caller's stay in place and see every signal.  A Ctrl-C from the
+ * terminal reaches the child too, which then fails; the caller falls back
+ * to the interpreter and stops at its next check.  A failure that was not
+ * a signal is compiled again here, for libgccjit's message in c.  The lock:
+ * a fork copies only this thread, and the child must not find libgccjit's
+ * own lock held by another thread's compilation. */
+static int compile_in_child(gcc_jit_context *c, const char *path)
+{
+    pid_t pid = fork();
+    if (pid < 0)
+        return compile_holding_signals(c, path, NULL);
+    if (pid == 0) {
+        gcc_jit_context_compile_to_file(c, GCC_JIT_OUTPUT_KIND_DYNAMIC_LIBRARY, path);
+        _exit(gcc_jit_context_get_first_error(c) != NULL);
+    }
+    int status;
+    while (waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR)
+            return compile_holding_signals(c, path, NULL); /* SIGCHLD ignored: no status */
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0)
+        return 0;
+    return WIFSIGNALED(status) ? -1 : compile_holding_signals(c, path, NULL);
+}
+
+int hl_jit_run_compiler(gcc_jit_context *c, const char *path, gcc_jit_result **res)
+{
+    static pthread_mutex_t one_at_a_time = PTHREAD_MUTEX_INITIALIZER;
+    pthread_mutex_lock(&one_at_a_time);
+    int rc = path != NULL ? compile_in_child(c, path) : compile_holding_signals(c, NULL, res);
+    pthread_mutex_unlock(&one_at_a_time);
+    return rc;
 }
 
 /* Extra options from $HL_JIT_FLAGS (space-separated), for experiments such

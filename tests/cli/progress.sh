@@ -87,6 +87,13 @@ if [ -f "$tmp/r.csv.partial" ] && [ ! -e "$tmp/r.csv" ] && [ ! -e "$tmp/r.csv.tm
 check_csv "$tmp/r.csv.partial"
 err_has "are kept in '$tmp/r.csv.partial'"
 
+# ---- SIGINT while libgccjit compiles (an empty cache each time) -------------
+# GCC's driver probes the signals' dispositions by setting SIG_IGN, which
+# discarded a Ctrl-C held back meanwhile: the run went on (exit 137 here).
+for after in 0.1 0.2 0.3 0.45; do
+    HAMLIE_CACHE_DIR=$(mktemp -d "$tmp/cold.XXXXXX") interrupted 130 "$after" "${LONG[@]}" --json
+done
+
 # ---- the adaptive integrator, in double and in Arb ---------------------------
 interrupted 130 0.5 run -H "$PEND" --scheme lie --tol 1e-12 --dt 1 --t 1e9 --init q=1,p=0 --json --progress
 python3 -c "import json,sys; d=json.load(open('$tmp/out')); assert d['interrupted'] and d['steps'] > 0" && ok || bad "adaptive --json"
