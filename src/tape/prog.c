@@ -302,6 +302,8 @@ static void conv_shape(mconv *m, const hl_conv *c)
     free(lane);
 }
 
+/* Room for the weights of terms jl..jh; w(j) is the result's [j - jl]
+ * (the run reads wts[lw + j]). */
 static double *new_weights(rec *r, mconv *m)
 {
     long n = m->jh - m->jl + 1 > 0 ? m->jh - m->jl + 1 : 0;
@@ -309,9 +311,10 @@ static double *new_weights(rec *r, mconv *m)
         r->wcap = 2 * (r->nwts + n) + 64;
         r->wts = hl_xrealloc(r->wts, (size_t)r->wcap * sizeof *r->wts);
     }
-    m->lw = r->nwts - m->jl; /* w[j] = wts[lw + j] */
+    double *w = r->wts + r->nwts;
+    m->lw = r->nwts - m->jl;
     r->nwts += n;
-    return r->wts + m->lw;
+    return w;
 }
 
 /* w(j) = wa j + wb, rounded as rule.h says (the loop's W_RUN) */
@@ -328,7 +331,7 @@ static void conv_weights(rec *r, mconv *m, const hl_conv *c)
     if (c->sym) {
         double *w = new_weights(r, m);
         for (int j = m->jl; j <= m->jh; j++)
-            w[j] = 2 * j < c->k ? 2 : 1;
+            w[j - m->jl] = 2 * j < c->k ? 2 : 1;
     }
     if (!c->weighted)
         return;
@@ -341,7 +344,7 @@ static void conv_weights(rec *r, mconv *m, const hl_conv *c)
     }
     double wa = r->consts[LOC_INDEX(m->lwa)], wb = r->consts[LOC_INDEX(m->lwb)];
     for (int j = m->jl; j <= m->jh; j++)
-        w[j] = run_weight(wa, wb, j);
+        w[j - m->jl] = run_weight(wa, wb, j);
 }
 
 /* The fresh terms as rule.h writes them: a weighted x[k] term (w y[0]) x[k],
