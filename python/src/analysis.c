@@ -27,21 +27,12 @@ hl_status make_scheme(hl_scheme **out, const char *name, int param, const char *
 
 /* ---- the result as Python values (GIL held) ------------------------------------- */
 
-static int put(PyObject *d, const char *key, PyObject *v)
-{
-    if (v == NULL)
-        return -1;
-    int rc = PyDict_SetItemString(d, key, v);
-    Py_DECREF(v);
-    return rc;
-}
-
 /* {name: component} of a field of the m phase variables */
 static PyObject *field(const hl_alg *v, const hl_analysis *A)
 {
     PyObject *d = PyDict_New();
     for (int i = 0; d != NULL && i < A->m; i++)
-        if (put(d, A->names[i], alg_str(&v[i], A->sys)) < 0)
+        if (dict_put(d, A->names[i], alg_str(&v[i], A->sys)) < 0)
             Py_CLEAR(d);
     return d;
 }
@@ -59,12 +50,13 @@ static PyObject *leading(const hl_vfields *e, const hl_errfield *F, const hl_ana
     if (d == NULL)
         return NULL;
     int lam = F->kind == HL_ERRFIELD_TIME_SHIFT || F->kind == HL_ERRFIELD_PARALLEL;
-    if (put(d, "k", PyLong_FromLong(e->leading)) < 0 ||
-        put(d, "kind", PyUnicode_FromString(kind_name(F->kind))) < 0 ||
-        (lam && put(d, "lambda", alg_str(&F->lambda, A->sys)) < 0) ||
-        (F->kind == HL_ERRFIELD_SCALING && put(d, "scale", field(F->scale, A)) < 0) ||
-        put(d, "hamiltonian", PyBool_FromLong(F->hamiltonian)) < 0 ||
-        put(d, "h", F->hamiltonian && F->have_h ? alg_str(&F->h, A->sys) : Py_NewRef(Py_None)) < 0)
+    if (dict_put(d, "k", PyLong_FromLong(e->leading)) < 0 ||
+        dict_put(d, "kind", PyUnicode_FromString(kind_name(F->kind))) < 0 ||
+        (lam && dict_put(d, "lambda", alg_str(&F->lambda, A->sys)) < 0) ||
+        (F->kind == HL_ERRFIELD_SCALING && dict_put(d, "scale", field(F->scale, A)) < 0) ||
+        dict_put(d, "hamiltonian", PyBool_FromLong(F->hamiltonian)) < 0 ||
+        dict_put(d, "h",
+                 F->hamiltonian && F->have_h ? alg_str(&F->h, A->sys) : Py_NewRef(Py_None)) < 0)
         Py_CLEAR(d);
     return d;
 }
@@ -80,12 +72,12 @@ static int put_fields(PyObject *d, const hl_vfields *e, const hl_errfield *F, in
             Py_CLEAR(list);
         Py_XDECREF(f);
     }
-    return put(d, "fields", list) < 0 ||
-           put(d, "two_ways_agree",
-               e->over_budget ? Py_NewRef(Py_None) : PyBool_FromLong(e->agree)) < 0 ||
-           put(d, "order", PyLong_FromLong(e->order)) < 0 ||
-           put(d, "exact_to_order_computed", PyBool_FromLong(e->leading == 0)) < 0 ||
-           put(d, "leading", have_F ? leading(e, F, A) : Py_NewRef(Py_None)) < 0;
+    return dict_put(d, "fields", list) < 0 ||
+           dict_put(d, "two_ways_agree",
+                    e->over_budget ? Py_NewRef(Py_None) : PyBool_FromLong(e->agree)) < 0 ||
+           dict_put(d, "order", PyLong_FromLong(e->order)) < 0 ||
+           dict_put(d, "exact_to_order_computed", PyBool_FromLong(e->leading == 0)) < 0 ||
+           dict_put(d, "leading", have_F ? leading(e, F, A) : Py_NewRef(Py_None)) < 0;
 }
 
 static PyObject *series_text(const hl_series *s, int skip1, const hl_analysis *A)
@@ -106,7 +98,7 @@ static PyObject *expansion(const hl_analysis *A)
 {
     PyObject *d = PyDict_New();
     for (int i = 0; d != NULL && i < A->m; i++)
-        if (put(d, A->names[i], series_text(&A->psi[i], 0, A)) < 0)
+        if (dict_put(d, A->names[i], series_text(&A->psi[i], 0, A)) < 0)
             Py_CLEAR(d);
     return d;
 }
@@ -166,14 +158,15 @@ static PyObject *time_part(const hl_analysis *A)
     if (d == NULL)
         return NULL;
     int bad =
-        put(d, "pure_time_translation", PyBool_FromLong(A->tau_ok)) < 0 ||
-        put(d, "fails_at", A->tau_ok ? Py_NewRef(Py_None) : PyLong_FromLong(A->tau_fail)) < 0 ||
-        (A->tau_ok && (put(d, "tau_series", series_text(&A->tau, 0, A)) < 0 ||
-                       put(d, "W_series", series_text(&A->tau, 1, A)) < 0)) ||
-        (A->tau_closed && (put(d, "tau", alg_str(&A->tau_forms[0], A->sys)) < 0 ||
-                           put(d, "tan_half_tau", alg_str(&A->tau_forms[1], A->sys)) < 0)) ||
-        (A->have_D2 && put(d, "double_step", alg_str(&A->tau_forms[2], A->sys)) < 0) ||
-        put(d, "closed_form_from_series", PyBool_FromLong(A->tau_series_only)) < 0;
+        dict_put(d, "pure_time_translation", PyBool_FromLong(A->tau_ok)) < 0 ||
+        dict_put(d, "fails_at", A->tau_ok ? Py_NewRef(Py_None) : PyLong_FromLong(A->tau_fail)) <
+            0 ||
+        (A->tau_ok && (dict_put(d, "tau_series", series_text(&A->tau, 0, A)) < 0 ||
+                       dict_put(d, "W_series", series_text(&A->tau, 1, A)) < 0)) ||
+        (A->tau_closed && (dict_put(d, "tau", alg_str(&A->tau_forms[0], A->sys)) < 0 ||
+                           dict_put(d, "tan_half_tau", alg_str(&A->tau_forms[1], A->sys)) < 0)) ||
+        (A->have_D2 && dict_put(d, "double_step", alg_str(&A->tau_forms[2], A->sys)) < 0) ||
+        dict_put(d, "closed_form_from_series", PyBool_FromLong(A->tau_series_only)) < 0;
     if (bad)
         Py_CLEAR(d);
     return d;
@@ -184,8 +177,8 @@ static PyObject *corrected(const hl_analysis *A)
     if (!A->correct)
         Py_RETURN_NONE;
     PyObject *d = PyDict_New();
-    if (d == NULL || put(d, "subtracted_up_to", PyLong_FromLong(A->correct)) < 0 ||
-        (A->cmap != NULL && put(d, "map", field(A->cmap, A)) < 0) ||
+    if (d == NULL || dict_put(d, "subtracted_up_to", PyLong_FromLong(A->correct)) < 0 ||
+        (A->cmap != NULL && dict_put(d, "map", field(A->cmap, A)) < 0) ||
         put_fields(d, &A->cfields, &A->cleading, A->have_cleading, A) < 0)
         Py_CLEAR(d);
     return d;
@@ -196,20 +189,21 @@ static PyObject *analysis_dict(const hl_analysis *A)
     PyObject *d = PyDict_New();
     if (d == NULL)
         return NULL;
-    int bad =
-        put(d, "scheme", PyUnicode_FromString(A->scheme->name)) < 0 ||
-        put(d, "explicit", PyBool_FromLong(A->closed)) < 0 ||
-        put(d, "order_computed", PyLong_FromLong(A->n)) < 0 ||
-        put(d, "expansion", expansion(A)) < 0 ||
-        put(d, "map", A->closed ? field(A->map, A) : Py_NewRef(Py_None)) < 0 ||
-        (A->map_omitted[0] && put(d, "map_omitted", PyUnicode_FromString(A->map_omitted)) < 0) ||
-        put_fields(d, &A->fields, &A->leading, A->have_leading, A) < 0 ||
-        put(d, "K", A->have_K ? field(A->K, A) : Py_NewRef(Py_None)) < 0 ||
-        put(d, "K_coefficients", K_coefficients(A)) < 0 ||
-        put(d, "invariants", invariants(A)) < 0 || put(d, "modified", modified(A)) < 0 ||
-        put(d, "time", time_part(A)) < 0 || put(d, "corrected", corrected(A)) < 0 ||
-        put(d, "numeric_zero_test",
-            PyBool_FromLong(hl_alg_ctx_numeric_used(hl_system_ctx(A->sys)))) < 0;
+    int bad = dict_put(d, "scheme", PyUnicode_FromString(A->scheme->name)) < 0 ||
+              dict_put(d, "explicit", PyBool_FromLong(A->closed)) < 0 ||
+              dict_put(d, "order_computed", PyLong_FromLong(A->n)) < 0 ||
+              dict_put(d, "expansion", expansion(A)) < 0 ||
+              dict_put(d, "map", A->closed ? field(A->map, A) : Py_NewRef(Py_None)) < 0 ||
+              (A->map_omitted[0] &&
+               dict_put(d, "map_omitted", PyUnicode_FromString(A->map_omitted)) < 0) ||
+              put_fields(d, &A->fields, &A->leading, A->have_leading, A) < 0 ||
+              dict_put(d, "K", A->have_K ? field(A->K, A) : Py_NewRef(Py_None)) < 0 ||
+              dict_put(d, "K_coefficients", K_coefficients(A)) < 0 ||
+              dict_put(d, "invariants", invariants(A)) < 0 ||
+              dict_put(d, "modified", modified(A)) < 0 || dict_put(d, "time", time_part(A)) < 0 ||
+              dict_put(d, "corrected", corrected(A)) < 0 ||
+              dict_put(d, "numeric_zero_test",
+                       PyBool_FromLong(hl_alg_ctx_numeric_used(hl_system_ctx(A->sys)))) < 0;
     if (bad)
         Py_CLEAR(d);
     return d;

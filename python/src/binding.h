@@ -37,6 +37,8 @@ extern PyObject *hamlie_Error; /* hamlie.Error, a ValueError */
  * hamlie.Error (message, position, source, status) for bad input,
  * MemoryError for HL_ENOMEM, KeyboardInterrupt for HL_ESTOP after a signal. */
 PyObject *raise_hl_error(const hl_error *err, hl_status st);
+/* d[key] = v, stealing v; -1 (an exception set) if v is NULL or the store fails */
+int dict_put(PyObject *d, const char *key, PyObject *v);
 
 /* Take the System's lock, releasing the GIL while waiting for it. */
 void system_lock(SystemObject *self);

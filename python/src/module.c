@@ -116,7 +116,7 @@ PyObject *take_str(char *s)
 
 /* ---- the catalog ----------------------------------------------------------- */
 
-static int put(PyObject *d, const char *key, PyObject *v)
+int dict_put(PyObject *d, const char *key, PyObject *v)
 {
     if (v == NULL)
         return -1;
@@ -138,20 +138,21 @@ static PyObject *scheme_record(const hl_scheme_info *in)
         return NULL;
     int family = in->order == HL_SCHEME_ORDER_N, exact = in->order == HL_SCHEME_EXACT;
     unsigned f = in->flags;
-    if (put(d, "name", PyUnicode_FromString(in->name)) < 0 ||
-        put(d, "order", family || exact ? Py_NewRef(Py_None) : PyLong_FromLong(in->order)) < 0 ||
-        (family && put(d, "order_range", Py_BuildValue("[ii]", 1, HL_SCHEME_LIE_MAX)) < 0) ||
-        put(d, "exact", PyBool_FromLong(exact)) < 0 ||
-        put(d, "symplectic", flag(f, HL_SCHEME_SYMPLECTIC)) < 0 ||
-        put(d, "preserves_H", flag(f, HL_SCHEME_PRESERVES_H)) < 0 ||
-        put(d, "implicit", flag(f, HL_SCHEME_IMPLICIT)) < 0 ||
-        put(d, "explicit_if_separable", flag(f, HL_SCHEME_SEPARABLE)) < 0 ||
-        put(d, "oscillator_only", flag(f, HL_SCHEME_OSCILLATOR)) < 0 ||
-        put(d, "quadratic_only", flag(f, HL_SCHEME_QUADRATIC)) < 0 ||
-        put(d, "description", PyUnicode_FromString(in->description)) < 0 ||
-        put(d, "text",
-            hl_scheme_text(in->name) ? PyUnicode_FromString(hl_scheme_text(in->name))
-                                     : Py_NewRef(Py_None)) < 0) {
+    if (dict_put(d, "name", PyUnicode_FromString(in->name)) < 0 ||
+        dict_put(d, "order", family || exact ? Py_NewRef(Py_None) : PyLong_FromLong(in->order)) <
+            0 ||
+        (family && dict_put(d, "order_range", Py_BuildValue("[ii]", 1, HL_SCHEME_LIE_MAX)) < 0) ||
+        dict_put(d, "exact", PyBool_FromLong(exact)) < 0 ||
+        dict_put(d, "symplectic", flag(f, HL_SCHEME_SYMPLECTIC)) < 0 ||
+        dict_put(d, "preserves_H", flag(f, HL_SCHEME_PRESERVES_H)) < 0 ||
+        dict_put(d, "implicit", flag(f, HL_SCHEME_IMPLICIT)) < 0 ||
+        dict_put(d, "explicit_if_separable", flag(f, HL_SCHEME_SEPARABLE)) < 0 ||
+        dict_put(d, "oscillator_only", flag(f, HL_SCHEME_OSCILLATOR)) < 0 ||
+        dict_put(d, "quadratic_only", flag(f, HL_SCHEME_QUADRATIC)) < 0 ||
+        dict_put(d, "description", PyUnicode_FromString(in->description)) < 0 ||
+        dict_put(d, "text",
+                 hl_scheme_text(in->name) ? PyUnicode_FromString(hl_scheme_text(in->name))
+                                          : Py_NewRef(Py_None)) < 0) {
         Py_DECREF(d);
         return NULL;
     }

@@ -143,21 +143,12 @@ static void System_dealloc(SystemObject *self)
 
 /* ---- what the system is ------------------------------------------------------ */
 
-static int put(PyObject *d, const char *key, PyObject *v)
-{
-    if (v == NULL)
-        return -1;
-    int rc = PyDict_SetItemString(d, key, v);
-    Py_DECREF(v);
-    return rc;
-}
-
 static PyObject *param_values(hl_system *sys)
 {
     PyObject *d = PyDict_New();
     for (int i = 0; d != NULL && i < hl_system_nset(sys); i++) {
         char *s = hl_expr_print(hl_system_set_value(sys, i), HL_STYLE_SYMPY);
-        if (put(d, hl_system_set_name(sys, i), take_str(s)) < 0)
+        if (dict_put(d, hl_system_set_name(sys, i), take_str(s)) < 0)
             Py_CLEAR(d);
     }
     return d;
@@ -172,12 +163,13 @@ static PyObject *System_info(SystemObject *self, PyObject *unused)
         return NULL;
     system_lock(self);
     int bad =
-        put(d, "coordinates", names_list(sys, hl_system_coord, N)) < 0 ||
-        put(d, "momenta", names_list(sys, hl_system_momentum, N)) < 0 ||
-        put(d, "parameters", names_list(sys, hl_system_param, hl_system_nparams(sys))) < 0 ||
-        put(d, "step", PyUnicode_FromString(hl_system_step(sys))) < 0 ||
-        put(d, "parameter_values", param_values(sys)) < 0 ||
-        put(d, "H", hl_system_has_H(sys) ? alg_str(hl_system_H(sys), sys) : Py_NewRef(Py_None)) < 0;
+        dict_put(d, "coordinates", names_list(sys, hl_system_coord, N)) < 0 ||
+        dict_put(d, "momenta", names_list(sys, hl_system_momentum, N)) < 0 ||
+        dict_put(d, "parameters", names_list(sys, hl_system_param, hl_system_nparams(sys))) < 0 ||
+        dict_put(d, "step", PyUnicode_FromString(hl_system_step(sys))) < 0 ||
+        dict_put(d, "parameter_values", param_values(sys)) < 0 ||
+        dict_put(d, "H",
+                 hl_system_has_H(sys) ? alg_str(hl_system_H(sys), sys) : Py_NewRef(Py_None)) < 0;
     system_unlock(self);
     if (bad)
         Py_CLEAR(d);
