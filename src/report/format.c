@@ -67,10 +67,17 @@ static const hl_expr *split_num(fmpq_t r, const hl_expr *e, hl_pool *pool)
     }
 }
 
+static int is_one(const hl_expr *e)
+{
+    return e->kind == HL_NUM && fmpq_is_one(e->num);
+}
+
 /* f*rest written left to right: f*(a*b) as f*a*b, f*(a/b) as f*a/b, which
- * is the same value and reads without parentheses. */
+ * is the same value and reads without parentheses; f*(1/b) as f/b. */
 static const hl_expr *mul_flat(const hl_expr *f, const hl_expr *rest, hl_pool *pool)
 {
+    if (is_one(rest))
+        return f;
     if (rest->kind == HL_MUL)
         return hl_mul(pool, mul_flat(f, rest->a, pool), rest->b);
     if (rest->kind == HL_DIV)
@@ -111,11 +118,6 @@ static const hl_expr *scaled(const fmpq_t r, const hl_expr *rest, hl_pool *pool)
     }
     fmpq_clear(a);
     return e;
-}
-
-static int is_one(const hl_expr *e)
-{
-    return e->kind == HL_NUM && fmpq_is_one(e->num);
 }
 
 /* ---- vector fields ---------------------------------------------------------- */
@@ -179,39 +181,51 @@ void hl_json_vector_field(hl_json *j, int n, const char *const *names, const hl_
 
 /* ---- series ---------------------------------------------------------------- */
 
-/* |r| var^k * rest, written "var^k/2*rest", "3*var^k*rest", ... */
+/* e/d (d = 0: e): one fraction when e is one already, D^2/(2*q^2) rather
+ * than D^2/2/q^2 (in LaTeX a fraction in a fraction). */
+static const hl_expr *with_denominator(const hl_expr *e, const fmpq_t d, hl_pool *pool)
+{
+    if (fmpq_is_zero(d))
+        return e;
+    const hl_expr *den = hl_num_fmpq(pool, d);
+    if (e->kind == HL_DIV)
+        return hl_div(pool, e->a, hl_mul(pool, den, e->b));
+    return hl_div(pool, e, den);
+}
+
+/* |r| var^k * rest, written "var^k/2*rest", "3*var^k*rest", "var^k*a/(2*b)" ... */
 static const hl_expr *series_term(const fmpq_t r, int k, const hl_expr *var,
                                   const hl_expr *rest, hl_pool *pool)
 {
-    fmpq_t a, t;
+    fmpq_t a, num, den;
     fmpq_init(a);
-    fmpq_init(t);
+    fmpq_init(num);
+    fmpq_init(den);
     fmpq_abs(a, r);
+    fmpz_set(fmpq_numref(num), fmpq_numref(a));
+    if (!fmpz_is_one(fmpq_denref(a)))
+        fmpz_set(fmpq_numref(den), fmpq_denref(a)); /* else den = 0: none */
     const hl_expr *f = NULL;
     if (k == 1)
         f = var;
     else if (k > 1)
         f = hl_pow(pool, var, hl_num_si(pool, k));
-    if (f == NULL)
-        f = rest ? NULL : hl_num_fmpq(pool, a);
+    const hl_expr *e;
+    if (f == NULL) /* k = 0: the scaled rest itself, or the number */
+        e = rest ? scaled(a, rest, pool) : hl_num_fmpq(pool, a);
     else {
-        if (!fmpz_is_one(fmpq_numref(a))) {
-            fmpz_set(fmpq_numref(t), fmpq_numref(a));
-            f = hl_mul(pool, hl_num_fmpq(pool, t), f);
-        }
-        if (!fmpz_is_one(fmpq_denref(a))) {
-            fmpq_zero(t);
-            fmpz_set(fmpq_numref(t), fmpq_denref(a));
-            f = hl_div(pool, f, hl_num_fmpq(pool, t));
+        if (!fmpq_is_one(num))
+            f = hl_mul(pool, hl_num_fmpq(pool, num), f);
+        if (rest != NULL && rest->kind == HL_DIV) /* D^2/(2*q^2) */
+            e = with_denominator(mul_flat(f, rest, pool), den, pool);
+        else { /* the Taylor coefficient first: D^2/2*x */
+            f = with_denominator(f, den, pool);
+            e = rest ? mul_flat(f, rest, pool) : f;
         }
     }
-    const hl_expr *e;
-    if (f == NULL) /* k = 0 with a rest: the scaled rest itself */
-        e = scaled(a, rest, pool);
-    else
-        e = rest ? mul_flat(f, rest, pool) : f;
     fmpq_clear(a);
-    fmpq_clear(t);
+    fmpq_clear(num);
+    fmpq_clear(den);
     return e;
 }
 

@@ -106,6 +106,17 @@ static void test_fields(void)
     s = hl_format_series(t, 2, "D", 0, ctx, pool, HL_STYLE_TEXT); /* no factorials */
     CHECK_STR(s, "x + D*p - D^2*x");
     free(s);
+    /* coefficients with a denominator: one fraction, no "D*1/x^2" */
+    CHECK(hl_system_read(&t[0], sys, "p", NULL) == HL_OK);
+    CHECK(hl_system_read(&t[1], sys, "-1/x^2", NULL) == HL_OK);
+    CHECK(hl_system_read(&t[2], sys, "1/x^2", NULL) == HL_OK);
+    CHECK(hl_system_read(&t[3], sys, "2*p/x^3", NULL) == HL_OK);
+    s = hl_format_series(t, 3, "D", 1, ctx, pool, HL_STYLE_TEXT);
+    CHECK_STR(s, "p - D/x^2 + D^2/(2*x^2) + D^3*p/(3*x^3)");
+    free(s);
+    s = hl_format_series(t, 2, "D", 1, ctx, pool, HL_STYLE_LATEX);
+    CHECK_STR(s, "p - \\frac{D}{x^{2}} + \\frac{D^{2}}{2\\,x^{2}}");
+    free(s);
     for (int k = 0; k < 5; k++)
         hl_alg_zero(&t[k], ctx);
     s = hl_format_series(t, 4, "D", 1, ctx, pool, HL_STYLE_TEXT);
