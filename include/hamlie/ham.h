@@ -83,7 +83,10 @@ hl_status hl_system_read_phase(hl_alg *out, hl_system *sys, const char *formula,
 /* Read a map "X = f; P = g" giving the image of every phase variable.  An
  * image is matched to its variable by name (the left side is the variable's
  * name in upper case, or the name followed by a prime: X or x'); else the
- * items are taken in the order q_1..q_N, p_1..p_N.  images has 2N entries. */
+ * items are taken in the order q_1..q_N, p_1..p_N.  A named image may use
+ * the images named before it ("P = p - D*sin(q); Q = q + D*P"); one used
+ * before it is given (an implicit map) is refused, pointing at it.  images
+ * has 2N entries. */
 hl_status hl_system_read_map(hl_alg *images, hl_system *sys, const char *map, hl_error *err);
 
 /* ---- §2: bracket and generator --------------------------------------- */

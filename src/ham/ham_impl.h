@@ -33,6 +33,11 @@ int ham_field(hl_system *sys, hl_error *err);
 /* Read an already parsed expression of this system: check its symbols
  * (positions are looked up in src from offset on), substitute H and the set
  * parameters, convert. */
+/* Substitute into each named image of a map the images named before it,
+ * by the names written on their left sides (read.c; for inferring the
+ * system's symbols from a map). */
+void ham_chain_images(hl_eqn *items, int n, hl_pool *pool);
+
 int ham_read_expr(hl_alg *out, hl_system *sys, const hl_expr *e, const char *src,
                   int offset, hl_error *err);
 

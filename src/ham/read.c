@@ -214,6 +214,76 @@ static int match_items(int *which, const hl_system *sys, const hl_eqn *items, in
     return HL_OK;
 }
 
+/* While the system's symbols are inferred from a map: the left sides of a
+ * map's named images, so that a right side's use of an earlier image (see
+ * chain_images) is no symbol of the system.  Each right side gets the
+ * earlier ones substituted by name as written. */
+void ham_chain_images(hl_eqn *items, int n, hl_pool *pool)
+{
+    const char **names = hl_xmalloc((size_t)(n > 0 ? n : 1) * sizeof *names);
+    const hl_expr **vals = hl_xmalloc((size_t)(n > 0 ? n : 1) * sizeof *vals);
+    int k = 0;
+    for (int i = 0; i < n && items[i].rhs != NULL && items[i].lhs->kind == HL_SYM; i++) {
+        if (k > 0)
+            items[i].rhs = hl_expr_subst(pool, items[i].rhs, k, names, vals);
+        names[k] = items[i].lhs->name;
+        vals[k++] = items[i].rhs;
+    }
+    free(names);
+    free(vals);
+}
+
+/* A named image may use the images named before it, as a scheme's stages
+ * do ("P = p - D*sin(q); Q = q + D*P", symplectic Euler), under any of the
+ * image's names (P, p'): each right side gets the earlier images
+ * substituted, in the order written.  A name that is also a symbol of the
+ * system (a parameter P) stays that symbol.  which[a]: item of variable a. */
+static void chain_images(hl_eqn *items, int n, const int *which, hl_system *sys)
+{
+    int N2 = 2 * sys->n;
+    const char **names = hl_xmalloc((size_t)N2 * 3 * sizeof *names);
+    const hl_expr **vals = hl_xmalloc((size_t)N2 * 3 * sizeof *vals);
+    for (int i = 1; i < n && items[i].rhs != NULL; i++) {
+        int k = hl_expr_symbols(items[i].rhs, NULL, 0), m = 0;
+        const char **syms = hl_xmalloc((size_t)(k > 0 ? k : 1) * sizeof *syms);
+        hl_expr_symbols(items[i].rhs, syms, k);
+        for (int s = 0; s < k; s++)
+            for (int a = 0; a < N2 && m < 3 * N2; a++)
+                if (which[a] < i && !is_known(sys, syms[s]) &&
+                    names_image_of(syms[s], var_name(sys, a))) {
+                    names[m] = syms[s];
+                    vals[m++] = items[which[a]].rhs;
+                }
+        if (m > 0)
+            items[i].rhs = hl_expr_subst(sys->pool, items[i].rhs, m, names, vals);
+        free(syms);
+    }
+    free(names);
+    free(vals);
+}
+
+/* x' left in a right side after the chaining names an image given later
+ * (or never): an implicit map, or images out of order.  copy is the map
+ * with primes as '_', at the same positions. */
+static int image_used_early(const hl_system *sys, const hl_eqn *items, int n, const char *map,
+                            const char *copy, hl_error *err)
+{
+    for (int a = 0; a < 2 * sys->n; a++) {
+        char primed[256];
+        snprintf(primed, sizeof primed, "%s_", var_name(sys, a));
+        for (int i = 0; i < n; i++) {
+            const hl_expr *e = items[i].rhs ? items[i].rhs : items[i].lhs;
+            if (hl_expr_has_symbol(e, primed))
+                return hl_error_set(err, HL_EINVAL, map, hl_symbol_pos(copy, primed), 1,
+                                    "%s' is used before its image is given: give the images "
+                                    "in the order they are computed (an implicit map is a "
+                                    "scheme: errors --equations)",
+                                    var_name(sys, a));
+        }
+    }
+    return HL_OK;
+}
+
 hl_status hl_system_read_map(hl_alg *images, hl_system *sys, const char *map, hl_error *err)
 {
     int N2 = 2 * sys->n, max = N2 + 2, n = 0;
@@ -230,6 +300,10 @@ hl_status hl_system_read_map(hl_alg *images, hl_system *sys, const char *map, hl
         err->src = map;
     if (st == HL_OK)
         st = match_items(which, sys, items, n, map, err);
+    if (st == HL_OK)
+        chain_images(items, n, which, sys);
+    if (st == HL_OK)
+        st = image_used_early(sys, items, n, map, copy, err);
     for (int a = 0; a < N2 && st == HL_OK; a++) {
         const hl_eqn *it = &items[which[a]];
         const hl_expr *e = it->rhs ? it->rhs : it->lhs;

@@ -473,6 +473,7 @@ static int collect_symbols(namelist *syms, hl_system *sys, const hl_system_spec 
             free(items), free(copy);
             return st;
         }
+        ham_chain_images(items, n, sys->pool); /* an earlier image is no symbol */
         for (int i = 0; i < n; i++)
             names_of_expr(syms, items[i].rhs ? items[i].rhs : items[i].lhs, sys->step);
         free(items), free(copy);

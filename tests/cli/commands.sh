@@ -124,6 +124,16 @@ assert pairs == [("X", "PX", 1), ("X", "PY", 0), ("Y", "PX", 0), ("Y", "PY", 1),
 assert all(b["ok"] for b in d["brackets"])'
 run 1 canonical --map 'X = x + D*p; P = p - D*x' --latex
 has_text '\{X, P\}'
+# an image using the images before it (symplectic Euler), and one that is not
+# canonical: {Q, P} = 1 + D for Q = (1+D)*q + D*P
+run 0 canonical --map "p' = p - D*sin(q); q' = q + D*p'"
+has_line 'Q = q + D*p - D^2*sin(q)'
+has_line 'canonical for every D'
+run 1 canonical --map "P = p - D*sin(q); Q = q + D*P + D*q" --json
+py '
+assert d["canonical"] is False and same(d["brackets"][0]["value"], "1 + D")'
+run 2 canonical --map "q' = q + D*p'; p' = p - D*sin(q)"
+err_has "p' is used before its image is given"
 
 # ---- 6. lie: pendulum, against a Lie series computed by sympy ----------------------
 run 0 lie -H 'p^2/2 - cos(q)' --order 6

@@ -143,9 +143,16 @@ static void test_read(void)
     const char *m = "X = x; Y = y; PX = px; PY = w";
     CHECK(hl_system_read_map(img, sys, m, &err) == HL_EINVAL);
     CHECK(err.src == m && err.pos == 28);
-    m = "X = x; Y = X; PX = px; PY = py"; /* X on a right side is unknown */
+    /* an image may use the images before it (symplectic Euler's stages) */
+    m = "PX = px - D*x; PY = py - D*k*y; X = x + D*PX; y' = y + D*py'";
+    CHECK(hl_system_read_map(img, sys, m, &err) == HL_OK);
+    CHECK(eq_formula(&img[0], sys, "x + D*(px - D*x)"));
+    CHECK(eq_formula(&img[1], sys, "y + D*(py - D*k*y)"));
+    CHECK(eq_formula(&img[2], sys, "px - D*x"));
+    m = "X = x + D*px'; Y = y; PX = px; PY = py"; /* px' before its image */
     CHECK(hl_system_read_map(img, sys, m, &err) == HL_EINVAL);
-    CHECK_MSG(err.pos == 11, "pos %d", err.pos);
+    CHECK_MSG(err.src == m && err.pos == 10, "pos %d", err.pos);
+    CHECK(strstr(err.msg, "before its image") != NULL);
     CHECK(hl_system_read_map(img, sys, "X = x; Y = y; PX = px", &err) == HL_EINVAL);
     CHECK(hl_system_read_map(img, sys, "X = x; X = y; PX = px; PY = py", &err) == HL_EINVAL);
     CHECK(strstr(err.msg, "twice") != NULL);
