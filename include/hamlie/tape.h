@@ -212,6 +212,12 @@ long hl_tape_compile_breakeven(const hl_tape *tape, hl_compile_kind kind);
 /* 1 if a run that makes this many uses of the compiled tape should
  * compile it (uses >= the break-even); 0 for a NULL tape. */
 int hl_tape_compile_pays(const hl_tape *tape, hl_compile_kind kind, long uses);
+/* 1 if the tape's compiled code for kind is in the disk cache and loading
+ * it repays itself over this many uses (a hit costs well under a
+ * millisecond, about what 500-3000 Taylor steps save): a driver that must
+ * otherwise wait to learn its run's length (the flow's probe) asks this
+ * first.  hl_tape_compile_pays says yes in these cases as well. */
+int hl_tape_compile_kept(const hl_tape *tape, hl_compile_kind kind, long uses);
 /* hl_tape_compile_breakeven(tape, HL_COMPILE_EVAL), its former name. */
 long hl_tape_jit_breakeven(const hl_tape *tape);
 
