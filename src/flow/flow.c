@@ -121,10 +121,16 @@ static long steps_left(const hl_flow *fl, double t, double mean)
     return left < (double)LONG_MAX ? (long)left : LONG_MAX;
 }
 
+/* The steps after which code kept in the disk cache may be loaded: past
+ * the first steps of a run, which grow from a cautious start (Kepler from
+ * perihelion: 41 steps to t = 0.1, 57 to t = 3), so that the step then
+ * says how many are left. */
+#define KEPT_PROBE 100
+
 /* After the probe steps: compile if the steps foreseen to native_end are
- * many (see flow.h).  But code kept in the disk cache is loaded after the
- * first step already, if the steps foreseen from that step's length
- * repay the load: a run shorter than the probe is native too.  t: the
+ * many (see flow.h).  But code kept in the disk cache is loaded after
+ * KEPT_PROBE steps already, if the steps foreseen at the step's length
+ * then repay the load: a run shorter than the probe is native too.  t: the
  * time reached; h: the step's length. */
 static void native_decide(hl_flow *fl, double t, double h)
 {
@@ -133,12 +139,15 @@ static void native_decide(hl_flow *fl, double t, double h)
     if (isnan(fl->t_probe)) {
         fl->t_probe = t;
         fl->n_probe = fl->nsteps;
-        if (hl_tape_compile_kept(fl->f, HL_COMPILE_TAYLOR, steps_left(fl, t, h)) &&
-            hl_tape_native(fl->f, fl->p, NULL) == HL_OK)
-            fl->native_done = 2;
         return;
     }
     long done = fl->nsteps - fl->n_probe;
+    if (done == KEPT_PROBE &&
+        hl_tape_compile_kept(fl->f, HL_COMPILE_TAYLOR, steps_left(fl, t, h)) &&
+        hl_tape_native(fl->f, fl->p, NULL) == HL_OK) {
+        fl->native_done = 2;
+        return;
+    }
     if (done < HL_FLOW_NATIVE_PROBE)
         return;
     double mean = fabs(t - fl->t_probe) / (double)done;
