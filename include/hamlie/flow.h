@@ -78,7 +78,9 @@ long hl_flow_nsteps(const hl_flow *flow); /* steps taken since creation */
  * with it.  The decision counts steps, not clocks, so a run is
  * reproducible, and the compiled recursion gives the interpreter's bits,
  * so the switch does not change the results.  A failure to compile leaves
- * the interpreter. */
+ * the interpreter.  A recursion kept in the disk cache is loaded after
+ * 100 steps, before the probe's end, when the steps foreseen at the step's
+ * length then repay the load (hl_tape_compile_kept). */
 #define HL_FLOW_NATIVE_PROBE 1000
 void hl_flow_native_for(hl_flow *flow, double t_end);
 int hl_flow_native_active(const hl_flow *flow);

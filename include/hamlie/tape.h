@@ -212,6 +212,38 @@ long hl_tape_compile_breakeven(const hl_tape *tape, hl_compile_kind kind);
 /* 1 if a run that makes this many uses of the compiled tape should
  * compile it (uses >= the break-even); 0 for a NULL tape. */
 int hl_tape_compile_pays(const hl_tape *tape, hl_compile_kind kind, long uses);
+/* 1 if the tape's compiled code for kind is in the disk cache and loading
+ * it repays itself over this many uses (a hit costs well under a
+ * millisecond, about what 500-3000 Taylor steps save): a driver that must
+ * otherwise wait to learn its run's length (the flow's probe) asks this
+ * first.  hl_tape_compile_pays says yes in these cases as well. */
+int hl_tape_compile_kept(const hl_tape *tape, hl_compile_kind kind, long uses);
+/* ---- the disk cache of compiled code (`hamlie cache`) ----
+ * Compiled code is kept in $HAMLIE_CACHE_DIR, else $XDG_CACHE_HOME/hamlie,
+ * else ~/.cache/hamlie (HAMLIE_CACHE=off: not at all).  hamlie's files
+ * there are its entries (<hash>.key and <hash>.so) and the temporaries of
+ * writers (<hash>.so.tmp<pid>.XXXXXX); any other file is not hamlie's and
+ * is neither counted nor removed. */
+typedef struct hl_jit_cache_listing {
+    char *dir;       /* the directory; NULL when the cache is off or no home is known */
+    int exists;      /* the directory exists */
+    long entries;    /* key files (each vouches for its object) */
+    long files;      /* hamlie's files: keys, objects, temporaries */
+    long long bytes; /* their size */
+} hl_jit_cache_listing;
+/* What the cache holds now.  HL_EIO if the directory exists but cannot be
+ * read.  hl_jit_cache_listing_clear frees it. */
+hl_status hl_jit_cache_list(hl_jit_cache_listing *listing, hl_error *err);
+void hl_jit_cache_listing_clear(hl_jit_cache_listing *listing);
+/* Removes hamlie's files from the cache directory: each entry's key
+ * before its object (a key never vouches for a missing object; a process
+ * that loses an entry it was about to load compiles again), and the
+ * temporaries of processes that are gone; a temporary of a running process
+ * is left to it (it is being written).  removed (may be NULL) says what
+ * went: files, bytes, entries.  HL_EIO, naming the file, if one cannot be
+ * removed (one removed meanwhile by another process is not an error). */
+hl_status hl_jit_cache_clear(hl_jit_cache_listing *removed, hl_error *err);
+
 /* hl_tape_compile_breakeven(tape, HL_COMPILE_EVAL), its former name. */
 long hl_tape_jit_breakeven(const hl_tape *tape);
 

@@ -99,9 +99,12 @@ static const cli_command commands[] = {
      cmd_errors_help},
     {"exact", cmd_exact, "the exact scheme of a quadratic H in closed form, checked (§3)",
      cmd_exact_help},
-    {"chaos", cmd_chaos, "chaos indicators of an orbit: MEGNO, FLI, Lyapunov exponent", cmd_chaos_help},
+    {"chaos", cmd_chaos, "chaos indicators of an orbit: MEGNO, FLI, Lyapunov exponent",
+     cmd_chaos_help},
     {"reproduce", cmd_reproduce, "the paper's figures and formulas, regenerated and checked",
      cmd_reproduce_help},
+    {"cache", cmd_cache, "the disk cache of compiled code: where, how big; --clear",
+     cmd_cache_help},
 };
 
 #define NCOMMANDS ((int)(sizeof commands / sizeof commands[0]))

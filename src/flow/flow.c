@@ -114,9 +114,25 @@ int hl_flow_native_active(const hl_flow *fl)
     return fl->native_done == 2;
 }
 
+/* The steps foreseen from t to native_end at mean steps of `mean`. */
+static long steps_left(const hl_flow *fl, double t, double mean)
+{
+    double left = fabs(fl->native_end - t) / mean;
+    return left < (double)LONG_MAX ? (long)left : LONG_MAX;
+}
+
+/* The steps after which code kept in the disk cache may be loaded: past
+ * the first steps of a run, which grow from a cautious start (Kepler from
+ * perihelion: 41 steps to t = 0.1, 57 to t = 3), so that the step then
+ * says how many are left. */
+#define KEPT_PROBE 100
+
 /* After the probe steps: compile if the steps foreseen to native_end are
- * many (see flow.h).  t: the time reached. */
-static void native_decide(hl_flow *fl, double t)
+ * many (see flow.h).  But code kept in the disk cache is loaded after
+ * KEPT_PROBE steps already, if the steps foreseen at the step's length
+ * then repay the load: a run shorter than the probe is native too.  t: the
+ * time reached; h: the step's length. */
+static void native_decide(hl_flow *fl, double t, double h)
 {
     if (fl->native_done || isnan(fl->native_end))
         return;
@@ -126,13 +142,17 @@ static void native_decide(hl_flow *fl, double t)
         return;
     }
     long done = fl->nsteps - fl->n_probe;
+    if (done == KEPT_PROBE &&
+        hl_tape_compile_kept(fl->f, HL_COMPILE_TAYLOR, steps_left(fl, t, h)) &&
+        hl_tape_native(fl->f, fl->p, NULL) == HL_OK) {
+        fl->native_done = 2;
+        return;
+    }
     if (done < HL_FLOW_NATIVE_PROBE)
         return;
     double mean = fabs(t - fl->t_probe) / (double)done;
-    double left = fabs(fl->native_end - t) / mean;
     fl->native_done = 1;
-    long foreseen = left < (double)LONG_MAX ? (long)left : LONG_MAX;
-    if (hl_tape_compile_pays(fl->f, HL_COMPILE_TAYLOR, foreseen) &&
+    if (hl_tape_compile_pays(fl->f, HL_COMPILE_TAYLOR, steps_left(fl, t, mean)) &&
         hl_tape_native(fl->f, fl->p, NULL) == HL_OK)
         fl->native_done = 2;
 }
@@ -362,7 +382,7 @@ static int drive(hl_flow *fl, double *thi, double *tlo, double *z, double tend, 
         memcpy(z, fl->zt, (size_t)fl->n * sizeof *z);
         memcpy(fl->zlo, fl->lo_next, (size_t)fl->n * sizeof *z);
         fl->nsteps++;
-        native_decide(fl, *thi + dir * h);
+        native_decide(fl, *thi + dir * h, h);
         if (last) {
             *thi = tend;
             *tlo = 0;

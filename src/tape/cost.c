@@ -55,9 +55,7 @@
 #define TAYLOR_BREAKEVEN_STEPS 1000000L
 
 /* With the disk cache of compiled code (jit_cache.c) a compilation serves
- * the runs after this one too.  A hit costs a dlopen and a check of the
- * file (well under a millisecond, bench/tape_jit.c "cache"), so compiling
- * then pays from the first use.  A miss with a usable cache compiles when
+ * the runs after this one too.  A miss with a usable cache compiles when
  * this run makes a CACHE_RUNS_AHEAD-th of the break-even's uses: the
  * code is counted to serve that many runs of the same program (a rerun,
  * another --t, a parameter study), and the first run pays for them.
@@ -65,6 +63,44 @@
  * its first run (100-300 ms more; see the NOTE in jit_cache.c on what
  * writing the file adds) and runs native from the second on. */
 #define CACHE_RUNS_AHEAD 20
+
+/* A hit is not free: the key file read and compared, the object read and
+ * hashed, dlopen and its relocations cost 0.27-0.67 ms of CPU
+ * (bench/cached_short.c, bench/jit_cache.c "hit"), about what 500-3000
+ * Taylor steps save.  So kept code is loaded when the run's uses save more
+ * than that, not for any run: a run of 30 Taylor steps interpreted takes
+ * 0.01-0.08 ms, loaded 0.23-0.46 ms. */
+#define CACHE_HIT_NS 5e5
+
+/* What a Taylor step saves compiled, per instruction of the tape (+1: the
+ * recursion's own loop over the state), at order 19, growing as the
+ * square of the order (each coefficient's convolutions): measured 89, 240,
+ * 638 and 1400 ns a step on the oscillator, pendulum, Henon-Heiles and
+ * Kepler (1, 2, 9 and 8 instructions; bench/cached_short.c), which this
+ * puts at 160, 240, 800 and 720 ns: the break-even of a hit within a
+ * factor 2 either way (3000, 1800, 850 and 480 steps measured). */
+#define TAYLOR_SAVED_NS_PER_OP 80.0
+#define TAYLOR_SAVED_AT_ORDER 19
+
+/* What a compiled Newton solve saves (see NEWTON_BREAKEVEN_SOLVES). */
+#define NEWTON_SAVED_NS_PER_SOLVE 80.0
+
+/* The saved ns per use of kind's compiled code. */
+static double saved_ns_per_use(const hl_tape *t, hl_compile_kind kind)
+{
+    double ops = t->ncode;
+    switch (kind) {
+    case HL_COMPILE_EVAL:
+        return JIT_SAVED_NS_PER_OP * ops;
+    case HL_COMPILE_LOOP:
+        return JIT_SAVED_NS_PER_OP * ops + LOOP_SAVED_NS_PER_STEP;
+    case HL_COMPILE_TAYLOR: {
+        double r = (double)t->ts / (TAYLOR_SAVED_AT_ORDER + 1);
+        return TAYLOR_SAVED_NS_PER_OP * (hl_tape_nops(t) + 1) * r * r;
+    }
+    }
+    return 0;
+}
 
 /* 1 if the cache holds the tape's code for this kind of use.  The Taylor
  * recursion is keyed by its order, which the interpreter has laid the
@@ -93,6 +129,12 @@ static int pays_with_cache(long breakeven, long uses, int kept)
     if (uses >= breakeven || kept)
         return 1;
     return hl_jit_cache_on() && uses >= breakeven / CACHE_RUNS_AHEAD;
+}
+
+/* 1 if uses repay a load from the cache (the cache is not asked). */
+static int hit_repaid(double saved_ns_per_use, long uses)
+{
+    return (double)uses * saved_ns_per_use >= CACHE_HIT_NS;
 }
 
 /* compile_ns / saved_ns, or LONG_MAX if nothing is saved or the quotient
@@ -129,7 +171,16 @@ int hl_tape_compile_pays(const hl_tape *t, hl_compile_kind kind, long uses)
     long breakeven = hl_tape_compile_breakeven(t, kind);
     if (breakeven == LONG_MAX || uses <= 0)
         return 0;
-    return pays_with_cache(breakeven, uses, uses < breakeven && kept_in_cache(t, kind));
+    int kept =
+        uses < breakeven && hit_repaid(saved_ns_per_use(t, kind), uses) && kept_in_cache(t, kind);
+    return pays_with_cache(breakeven, uses, kept);
+}
+
+int hl_tape_compile_kept(const hl_tape *t, hl_compile_kind kind, long uses)
+{
+    if (t == NULL || uses <= 0 || hl_tape_compile_breakeven(t, kind) == LONG_MAX)
+        return 0;
+    return hit_repaid(saved_ns_per_use(t, kind), uses) && kept_in_cache(t, kind);
 }
 
 int hl_newton_compile_pays(const hl_newton *nw, long solves)
@@ -137,7 +188,7 @@ int hl_newton_compile_pays(const hl_newton *nw, long solves)
     if (nw == NULL || !hl_tape_jit_available() || solves <= 0)
         return 0;
     int kept = 0;
-    if (solves < NEWTON_BREAKEVEN_SOLVES) {
+    if (solves < NEWTON_BREAKEVEN_SOLVES && hit_repaid(NEWTON_SAVED_NS_PER_SOLVE, solves)) {
         hl_buf inputs;
         hl_buf_init(&inputs);
         hl_jit_inputs_newton(&inputs, nw);

@@ -198,6 +198,11 @@ static char *dir_from_env(void)
     return hl_buf_take(&b);
 }
 
+char *hl_jit_cache_dir_named(void)
+{
+    return cache_off() ? NULL : dir_from_env();
+}
+
 static void notice(const char *dir, const char *why)
 {
     if (cache.noticed)

@@ -45,6 +45,11 @@ int hl_jit_host_isa(void);
  * (jit_cache_id.c; appended to b). */
 void hl_jit_generator_id(hl_buf *b);
 
+/* The directory the environment names for the cache (not made, not
+ * checked; see jit_cache.c), or NULL when HAMLIE_CACHE=off or no home is
+ * known.  The caller frees it. */
+char *hl_jit_cache_dir_named(void);
+
 /* 1 if the cache is on and its directory usable (made if missing). */
 int hl_jit_cache_on(void);
 

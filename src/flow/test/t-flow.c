@@ -8,6 +8,7 @@
  *   observed convergence: the error shrinks with the tolerance;
  *   failures: z' = z^2 from 1 blows up at t = 1, and the error names it. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -391,6 +392,62 @@ static void test_native_for(void)
     }
 }
 
+/* The oscillator from (1, 0) to t = 300 (about 300 steps, under half the
+ * probe) after hl_flow_native_for(t_end); z: the state there. */
+static int short_run(double t_end, double *z)
+{
+    hl_error err;
+    hl_tape *t = oscillator();
+    hl_flow *fl = NULL;
+    CHECK(hl_flow_new(&fl, t, 1e-15, 1e-15, &err) == HL_OK);
+    if (t_end > 0)
+        hl_flow_native_for(fl, t_end);
+    double tt = 0;
+    z[0] = 1, z[1] = 0;
+    CHECK(hl_flow_evolve(fl, &tt, 300, z, &err) == HL_OK);
+    CHECK(hl_flow_nsteps(fl) > 200 && hl_flow_nsteps(fl) < HL_FLOW_NATIVE_PROBE / 2);
+    int native = hl_flow_native_active(fl);
+    hl_flow_free(fl);
+    hl_tape_free(t);
+    return native;
+}
+
+/* A recursion kept in the disk cache is loaded after 100 steps, for a run
+ * shorter than the probe, when the steps foreseen repay the load
+ * (t_end = 2e4: 20 000 steps, too few to compile on a miss); not when
+ * they do not (t_end = 400: 300 steps left, the oscillator's load repaid
+ * from about 3000), nor when the cache does not hold it.  The native run
+ * gives the interpreter's bits. */
+static void test_native_kept(void)
+{
+    char dir[] = "/tmp/hamlie-t-flow-XXXXXX";
+    CHECK(mkdtemp(dir) != NULL);
+    setenv("HAMLIE_CACHE_DIR", dir, 1);
+    unsetenv("HAMLIE_CACHE");
+    double interp[2], z[2];
+    CHECK(short_run(0, interp) == 0);
+    CHECK(fabs(interp[0] - cos(300.0)) < 1e-13 && fabs(interp[1] + sin(300.0)) < 1e-13);
+    CHECK(short_run(2e4, z) == 0); /* nothing kept yet */
+    CHECK(memcmp(z, interp, sizeof z) == 0);
+    /* fill the cache: the recursion at the flow's order */
+    hl_error err;
+    hl_tape *t = oscillator();
+    hl_flow *fl = NULL;
+    CHECK(hl_flow_new(&fl, t, 1e-15, 1e-15, &err) == HL_OK);
+    int can = hl_tape_native(t, hl_flow_order(fl), &err) == HL_OK;
+    hl_flow_free(fl);
+    hl_tape_free(t);
+    CHECK_MSG(short_run(2e4, z) == can, "kept, 2e4 foreseen: native %d", !can);
+    CHECK(memcmp(z, interp, sizeof z) == 0);
+    CHECK(short_run(400, z) == 0);
+    CHECK(memcmp(z, interp, sizeof z) == 0);
+    setenv("HAMLIE_CACHE", "off", 1);
+    CHECK(short_run(2e4, z) == 0);
+    char cmd[64];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    CHECK(system(cmd) == 0);
+}
+
 int main(void)
 {
     /* the cost model without the disk cache, whose entries (a kept
@@ -406,6 +463,7 @@ int main(void)
     test_blowup();
     test_callback_stop();
     test_native_for();
+    test_native_kept();
     hl_pool_free(P);
     flint_cleanup();
     return HL_TEST_END();

@@ -260,28 +260,44 @@ static void test_taylor(hl_pool *P)
         CHECK(memcmp(got, want, sizeof want) == 0);
         CHECK(pass == 0 ? stats().compiles == s0.compiles + 1
                         : stats().hits == s0.hits + 1 && stats().compiles == s0.compiles);
-        /* the cost model: a kept recursion is compiled for one step */
-        if (pass == 1)
-            CHECK(hl_tape_compile_pays(t, HL_COMPILE_TAYLOR, 1));
+        /* the cost model: a kept recursion is loaded for a run of
+         * 1e5 steps (short of the break-even of a compilation, 1e6, and of
+         * the 1/20 of it that pays for one into the cache), not for one
+         * step, whose load would cost more than it saves */
+        if (pass == 1) {
+            CHECK(hl_tape_compile_pays(t, HL_COMPILE_TAYLOR, 100000));
+            CHECK(hl_tape_compile_kept(t, HL_COMPILE_TAYLOR, 100000));
+            CHECK(!hl_tape_compile_pays(t, HL_COMPILE_TAYLOR, 1));
+            CHECK(!hl_tape_compile_kept(t, HL_COMPILE_TAYLOR, 1));
+        }
         hl_tape_free(t);
     }
 }
 
-/* A program not kept: compiled only for a run long enough; kept: for one
- * use; never for none. */
+/* A program not kept: compiled only for a run long enough (into the
+ * cache from a 20th of the break-even); kept: loaded for a run whose uses
+ * repay the load (a 40th of the break-even does), not for one use; never
+ * for none. */
 static void test_cost(hl_pool *P)
 {
     CHECK(jit_matches_interpreter(P, 0)); /* kept (compiled if it was not) */
     hl_tape *kept = make_tape(P, 0), *fresh = make_tape(P, 7);
     long b = hl_tape_compile_breakeven(fresh, HL_COMPILE_EVAL);
     CHECK(b > 1000 && b < LONG_MAX);
-    CHECK(hl_tape_compile_pays(kept, HL_COMPILE_EVAL, 1));
+    CHECK(hl_tape_compile_breakeven(kept, HL_COMPILE_EVAL) == b);
+    CHECK(hl_tape_compile_pays(kept, HL_COMPILE_EVAL, b / 40));
+    CHECK(hl_tape_compile_kept(kept, HL_COMPILE_EVAL, b / 40));
+    CHECK(!hl_tape_compile_pays(kept, HL_COMPILE_EVAL, 1));
+    CHECK(!hl_tape_compile_kept(kept, HL_COMPILE_EVAL, 1));
     CHECK(!hl_tape_compile_pays(kept, HL_COMPILE_EVAL, 0));
-    CHECK(!hl_tape_compile_pays(fresh, HL_COMPILE_EVAL, 1));
+    CHECK(!hl_tape_compile_pays(fresh, HL_COMPILE_EVAL, b / 40));
+    CHECK(!hl_tape_compile_kept(fresh, HL_COMPILE_EVAL, b / 40));
+    CHECK(hl_tape_compile_pays(fresh, HL_COMPILE_EVAL, b / 20));
     CHECK(hl_tape_compile_pays(fresh, HL_COMPILE_EVAL, b));
     setenv("HAMLIE_CACHE", "off", 1);
     hl_jit_cache_reset();
-    CHECK(!hl_tape_compile_pays(kept, HL_COMPILE_EVAL, 1));
+    CHECK(!hl_tape_compile_pays(kept, HL_COMPILE_EVAL, b / 40));
+    CHECK(!hl_tape_compile_kept(kept, HL_COMPILE_EVAL, b / 40));
     CHECK(!hl_tape_compile_pays(fresh, HL_COMPILE_EVAL, b - 1));
     unsetenv("HAMLIE_CACHE");
     hl_jit_cache_reset();
