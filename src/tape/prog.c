@@ -513,6 +513,26 @@ static void rec_init(rec *r, const hl_tape *t)
     r->t = t;
 }
 
+/* The ODE step after coefficient k's body: z_i[k+1] = f_i[k] / (k+1) as
+ * fma(f, hi, f lo), hi + lo = 1/(k+1), f * hi when lo is 0, as the compiled
+ * code does (rule.h, hl_rule_recip_split): a division is slow, a product by
+ * a rounded 1/(k+1) alone drifts the phase.  Behind M_ODE, so that a plain
+ * run stops before it.  Output i feeds input i, which is register i. */
+static void rec_ode_step(rec *r, const hl_tape *t, int k, int S)
+{
+    double hi, lo;
+    hl_rule_recip_split(&hi, &lo, k + 1);
+    r->first_op = r->nops;
+    r->ntemp = 0;
+    emit(r, M_ODE, 0, 0, 0, 0)->d = LOC(SP_REG, 0);
+    long lhi = rec_const(r, hi), llo = rec_const(r, lo);
+    for (int i = 0; i < t->nout; i++) {
+        long f = LOC(SP_REG, (long)t->outreg[i] * S + k);
+        rop *o = lo == 0 ? emit(r, M_MUL, 0, f, lhi, f) : emit(r, M_DIVIDE, 0, f, lhi, llo);
+        o->d = LOC(SP_REG, (long)i * S + k + 1);
+    }
+}
+
 /* the end of a coefficient's program: the loop stops there without a test
  * at every operation */
 static void rec_end(rec *r)
@@ -532,6 +552,8 @@ hl_prog *hl_prog_taylor(const hl_tape *t, double *td, int order)
             rec_enter(&r, &t->code[i], i, S);
             hl_rule_of((hl_op)t->code[i].op)->taylor(&r.em, k);
         }
+        if (k < order && t->nin == t->nout)
+            rec_ode_step(&r, t, k, S);
         rec_end(&r);
     }
     start[S] = r.nops;

@@ -22,11 +22,12 @@ static inline __attribute__((always_inline)) RUN_TARGET double CAT(RUN, _table)(
  * in the fixed sequence; the program of each coefficient ends with M_END,
  * so there is no test of the end.  Called with p = NULL, gives the
  * handlers' addresses in the order of mcode. */
-static RUN_TARGET void RUN(const hl_prog *p, int k, const void *const **labels)
+static RUN_TARGET void RUN(const hl_prog *p, int k, int ode, const void *const **labels)
 {
-    static const void *const go[] = {&&mov,    &&neg,    &&add,     &&sub,     &&mul,    &&div,
-                                     &&fma_,   &&call_,  &&sincos_, &&conv_,   &&conv_t, &&conv_w,
-                                     &&conv_p, &&conv_l, &&conv_0,  &&conv_t0, &&end};
+    static const void *const go[] = {&&mov,     &&neg,    &&add,    &&sub,     &&mul,
+                                     &&div,     &&fma_,   &&call_,  &&sincos_, &&conv_,
+                                     &&conv_t,  &&conv_w, &&conv_p, &&conv_l,  &&conv_0,
+                                     &&conv_t0, &&ode_,   &&divide, &&end};
     _Static_assert(sizeof go / sizeof *go == M_END + 1, "a handler per mcode");
     if (p == NULL) {
         *labels = go;
@@ -86,6 +87,13 @@ conv_0:
     NEXT();
 conv_t0:
     *o->d = CAT(RUN, _table)(&cv[o->arg]);
+    NEXT();
+ode_:
+    if (!ode)
+        return;
+    NEXT();
+divide:
+    *o->d = fma(*o->a, *o->b, *o->a * *o->c);
     NEXT();
 end:
     return;

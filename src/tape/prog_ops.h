@@ -23,7 +23,9 @@ typedef enum mcode {
     M_CONV_LANES, /* a partner: its known sum is done already */
     M_CONV_BARE,  /* M_CONV_PLAIN, M_CONV_TABLE without post-operations */
     M_CONV_TABLE_BARE,
-    M_END /* closes the program of each coefficient */
+    M_ODE,    /* a plain run (hl_prog_run) ends here; an ODE run goes on */
+    M_DIVIDE, /* *d = fma(*a, *b, *a * *c): the ODE step f/(k+1), b + c = 1/(k+1) */
+    M_END     /* closes the program of each coefficient */
 } mcode;
 
 /* How a convolution's known terms read: x[j] y[k-j], or (w[j] x[j]) y[k-j]
@@ -93,7 +95,8 @@ typedef struct mconv {
 } mconv;
 
 struct hl_prog {
-    void (*run)(const hl_prog *p, int k, const void *const **labels); /* this processor's loop */
+    /* this processor's loop; ode: go on past M_ODE */
+    void (*run)(const hl_prog *p, int k, int ode, const void *const **labels);
     mop *op;
     int nop;
     int *start; /* the program of coefficient k is op[start[k] ..], up to its M_END */

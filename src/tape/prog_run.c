@@ -19,6 +19,7 @@
  * scalar ones, and the processor picks. */
 #define _GNU_SOURCE /* sincos */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "rules/rule.h"
@@ -81,7 +82,10 @@ static double known_pair(const mconv *m, mconv *second)
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
 #define HAVE_VEC 1
-#define VEC __attribute__((target("avx2")))
+/* fma: the ODE step's fma is then one instruction, not a call; the same
+ * correctly rounded result.  The file is compiled with -ffp-contract=off
+ * (CMakeLists.txt), so that no a * b + c of the sums is fused. */
+#define VEC __attribute__((target("avx2,fma")))
 
 /* The last 1..3 terms: lanes 0..r-1 of x (and w) at j, and y[k-j..] at the
  * top of the four from y + k - j - 3, read under a mask (what is past the
@@ -250,15 +254,31 @@ static inline __attribute__((always_inline)) void conv_post(const mconv *m, doub
 #include "tape/prog_loop.h"
 #endif
 
+/* HAMLIE_NO_AVX2=1 (any value but empty or "0") in the environment runs the
+ * scalar loop on processors that have AVX2 too, so that the tests cover the
+ * path of the processors without it (tests/CMakeLists: the "-scalar"
+ * tests).  Read once: a program's loop is chosen when it is bound. */
+static int avx2_allowed(void)
+{
+    static int allowed = -1; /* threads may race here: all write the same value */
+    int a = __atomic_load_n(&allowed, __ATOMIC_RELAXED);
+    if (a < 0) {
+        const char *no = getenv("HAMLIE_NO_AVX2");
+        a = no == NULL || no[0] == '\0' || strcmp(no, "0") == 0;
+        __atomic_store_n(&allowed, a, __ATOMIC_RELAXED);
+    }
+    return a;
+}
+
 void hl_prog_bind(hl_prog *p)
 {
-    void (*run)(const hl_prog *, int, const void *const **) = run_scalar;
+    void (*run)(const hl_prog *, int, int, const void *const **) = run_scalar;
 #if HAVE_VEC
-    if (__builtin_cpu_supports("avx2"))
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && avx2_allowed())
         run = run_vec;
 #endif
     const void *const *go;
-    run(NULL, 0, &go);
+    run(NULL, 0, 0, &go);
     for (int i = 0; i < p->nop; i++)
         p->op[i].go = go[p->op[i].code];
     p->run = run;
@@ -266,5 +286,10 @@ void hl_prog_bind(hl_prog *p)
 
 void hl_prog_run(const hl_prog *p, int k)
 {
-    p->run(p, k, NULL);
+    p->run(p, k, 0, NULL);
+}
+
+void hl_prog_run_ode(const hl_prog *p, int k)
+{
+    p->run(p, k, 1, NULL);
 }
