@@ -107,8 +107,8 @@ static const long long top_mask[4][4] = {
 
 static inline VEC double lanes_added(__m256d acc)
 {
-    __m128d h = _mm_hadd_pd(_mm256_castpd256_pd128(acc), _mm256_extractf128_pd(acc, 1));
-    return _mm_cvtsd_f64(h) + _mm_cvtsd_f64(_mm_unpackhi_pd(h, h)); /* (l0+l1) + (l2+l3) */
+    __m256d pairs = acc + _mm256_permute_pd(acc, 0x5); /* l0+l1, ., l2+l3, . */
+    return _mm256_cvtsd_f64(pairs) + _mm_cvtsd_f64(_mm256_extractf128_pd(pairs, 1));
 }
 
 static inline VEC double known_plain_vec(const mconv *m)
