@@ -38,4 +38,7 @@ void hl_prog_run_ode(const hl_prog *p, int k);
 
 void hl_prog_free(hl_prog *p); /* NULL is a no-op */
 
+/* The loop that runs p: "avx2" or "scalar" (prog_run.c, HAMLIE_NO_AVX2). */
+const char *hl_prog_loop(const hl_prog *p);
+
 #endif /* HAMLIE_TAPE_PROG_IMPL_H */

@@ -284,6 +284,11 @@ void hl_prog_bind(hl_prog *p)
     p->run = run;
 }
 
+const char *hl_prog_loop(const hl_prog *p)
+{
+    return p->run == run_scalar ? "scalar" : "avx2";
+}
+
 void hl_prog_run(const hl_prog *p, int k)
 {
     p->run(p, k, 0, NULL);
