@@ -554,8 +554,7 @@ static hl_prog *finish(rec *r, double *reg, int ncode, int *start, int nk)
         m->wb = m->lwb >= 0 ? at(&s, m->lwb) : NULL;
         m->shape = m->npost == 0   ? 0
                    : m->npost == 1 ? m->post[0].code
-                   : m->npost == 2 ? m->post[0].code + P_N * m->post[1].code
-                                   : -1;
+                                   : m->post[0].code + P_N * m->post[1].code;
         for (int j = 0; j < m->npost; j++) {
             m->post[j].b = at(&s, m->post[j].lb);
             m->post[j].d = at(&s, m->post[j].ld);

@@ -32,9 +32,10 @@ hl_prog *hl_prog_point(const hl_tape *t, double *r);
 /* Run the program of coefficient k (0 for a point program). */
 void hl_prog_run(const hl_prog *p, int k);
 
-/* Run the program of coefficient k < order and then the ODE step to k + 1
- * (hl_prog_taylor). */
-void hl_prog_run_ode(const hl_prog *p, int k);
+/* The ODE recursion: run the programs of coefficients 0 .. kend - 1 (kend
+ * <= order), each followed by its ODE step to k + 1 (hl_prog_taylor), in
+ * one call of the loop. */
+void hl_prog_run_ode(const hl_prog *p, int kend);
 
 void hl_prog_free(hl_prog *p); /* NULL is a no-op */
 

@@ -76,7 +76,7 @@ typedef struct mconv {
     double *w; /* CV_TABLE, CV_WEIGHTED: w[j] for j = jl..jh */
     int kind, k, jl, jh, nf;
     fresh f[2];
-    int npost, shape; /* shape: 0 without posts, code0 (+ P_N code1) for one (two), else -1 */
+    int npost, shape; /* shape: 0 without posts, code0 for one, code0 + P_N code1 for more */
     post post[NPOST];
     /* Two convolutions of one rule call over the same x, weights and range
      * (sin's and cos's, say) read w[j] x[j] once: the first one sums the
@@ -95,8 +95,8 @@ typedef struct mconv {
 } mconv;
 
 struct hl_prog {
-    /* this processor's loop; ode: go on past M_ODE */
-    void (*run)(const hl_prog *p, int k, int ode, const void *const **labels);
+    /* this processor's loop: the programs of k .. kend - 1; ode: go on past M_ODE */
+    void (*run)(const hl_prog *p, int k, int kend, int ode, const void *const **labels);
     mop *op;
     int nop;
     int *start; /* the program of coefficient k is op[start[k] ..], up to its M_END */

@@ -213,13 +213,13 @@ static void conv_run_weights(mconv *m)
 #define CASE2(c0, c1)                                                                              \
     case c0 + P_N *c1:                                                                             \
         POST1(c0), POST2(c1);                                                                      \
-        return;
+        break;
 #define CASES2(c0)                                                                                 \
     CASE2(c0, P_ADD) CASE2(c0, P_SUB) CASE2(c0, P_RSUB) CASE2(c0, P_MUL) CASE2(c0, P_NEG)
 
-/* The operations recorded after the sum s, run in the same micro-op: one
- * or two of them by their codes' pair (m->shape), written out; longer
- * chains in a loop. */
+/* The operations recorded after the sum s, run in the same micro-op: the
+ * first one or two by their codes' pair (m->shape), written out; the rest
+ * of a longer chain in a loop. */
 static inline __attribute__((always_inline)) void conv_post(const mconv *m, double s, double *d)
 {
     *d = s;
@@ -227,12 +227,13 @@ static inline __attribute__((always_inline)) void conv_post(const mconv *m, doub
     case 0:
         return;
         CASE1(P_ADD)
-        CASE1(P_SUB) CASE1(P_RSUB) CASE1(P_MUL) CASE1(P_NEG) CASES2(P_ADD) CASES2(P_SUB)
-            CASES2(P_RSUB) CASES2(P_MUL) CASES2(P_NEG) default : for (int i = 0; i < m->npost; i++)
-        {
-            const post *p = &m->post[i];
-            *p->d = s = POST_OP(p->code, s, *p->b);
-        }
+        CASE1(P_SUB)
+        CASE1(P_RSUB) CASE1(P_MUL) CASE1(P_NEG) CASES2(P_ADD) CASES2(P_SUB) CASES2(P_RSUB)
+            CASES2(P_MUL) CASES2(P_NEG)
+    }
+    for (int i = 2; i < m->npost; i++) {
+        const post *p = &m->post[i];
+        *p->d = s = POST_OP(p->code, s, *p->b);
     }
 }
 
@@ -272,13 +273,13 @@ static int avx2_allowed(void)
 
 void hl_prog_bind(hl_prog *p)
 {
-    void (*run)(const hl_prog *, int, int, const void *const **) = run_scalar;
+    void (*run)(const hl_prog *, int, int, int, const void *const **) = run_scalar;
 #if HAVE_VEC
     if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && avx2_allowed())
         run = run_vec;
 #endif
     const void *const *go;
-    run(NULL, 0, 0, &go);
+    run(NULL, 0, 0, 0, &go);
     for (int i = 0; i < p->nop; i++)
         p->op[i].go = go[p->op[i].code];
     p->run = run;
@@ -291,10 +292,11 @@ const char *hl_prog_loop(const hl_prog *p)
 
 void hl_prog_run(const hl_prog *p, int k)
 {
-    p->run(p, k, 0, NULL);
+    p->run(p, k, k + 1, 0, NULL);
 }
 
-void hl_prog_run_ode(const hl_prog *p, int k)
+void hl_prog_run_ode(const hl_prog *p, int kend)
 {
-    p->run(p, k, 1, NULL);
+    if (kend > 0)
+        p->run(p, 0, kend, 1, NULL);
 }

@@ -68,8 +68,7 @@ hl_status hl_tape_taylor_ode_d(double *z, int order, hl_tape *t, hl_error *err)
         memcpy(z, td, (size_t)n * S * sizeof *z);
         return HL_OK;
     }
-    for (int k = 0; k < order; k++)
-        hl_prog_run_ode(t->tprog, k); /* with z[k+1] = f[k] / (k+1) (prog_impl.h) */
+    hl_prog_run_ode(t->tprog, order); /* k = 0 .. order-1, each with z[k+1] = f[k] / (k+1) */
     memcpy(z, td, (size_t)n * S * sizeof *z);
     return HL_OK;
 }
