@@ -38,6 +38,7 @@ typedef struct rec {
     long base[HL_SLOT_COUNT]; /* the register of each slot (index of coefficient 0) */
     int reg[HL_SLOT_COUNT];   /* the register itself, -1 when the slot has none */
     int instr, first_op;      /* the instruction being recorded, its first op */
+    int k_first_op;           /* the first op of the coefficient being recorded */
     long *tloc;               /* where each temporary of this rule call lives */
     int ntemp, tcap, maxtemp;
     rop *ops;
@@ -106,16 +107,84 @@ static long conv_value(rec *r, mconv **m)
     return (*m)->npost ? (*m)->post[(*m)->npost - 1].ld : last->d;
 }
 
-/* a op b as a post-operation of the last convolution, when it reads its
- * value (saves a dispatch: the dominant cost of short rules) */
+/* The value of the convolution of op i (its last post-operation's, if any). */
+static long conv_value_at(const rec *r, int i)
+{
+    const mconv *m = &r->cv[r->ops[i].arg];
+    return m->npost ? m->post[m->npost - 1].ld : r->ops[i].d;
+}
+
+/* Whether op o is one result written to a temporary of this rule call. */
+static int writes_temp(const rop *o)
+{
+    if (o->code > M_FMA && o->code != M_CALL)
+        return 0; /* a convolution, sincos (two results), the ends */
+    return LOC_SPACE(o->d) == SP_TEMP;
+}
+
+/* Whether op o may run before convolution i that precedes it: it writes
+ * only a temporary and reads nothing i writes (each op rounds as it would
+ * in place: moving one changes no bit, only what it reads). */
+static int may_pass(const rec *r, const rop *o, int i)
+{
+    if (!writes_temp(o))
+        return 0;
+    const mconv *m = &r->cv[r->ops[i].arg];
+    for (int p = -1; p < m->npost; p++) {
+        long w = p < 0 ? r->ops[i].d : m->post[p].ld;
+        if (o->a == w || o->b == w || o->c == w)
+            return 0;
+    }
+    return 1;
+}
+
+/* The convolution a post-operation reading s can join: the last op; or
+ * the last one of this rule call before ops that may pass it (it moves
+ * after them); or the last op of the coefficient's program when it is a
+ * convolution of an earlier rule call whose value is stored in a register
+ * (temporaries are the rule call's own; a register stays).  Its index, or
+ * -1. */
+static int post_target(rec *r, long a, long b)
+{
+    int i = r->nops - 1;
+    while (i >= r->first_op && writes_temp(&r->ops[i]))
+        i--;
+    int earlier_call = i < r->first_op;
+    if (i < r->k_first_op || r->ops[i].code != M_CONV)
+        return -1;
+    if (earlier_call && (i != r->nops - 1 || LOC_SPACE(conv_value_at(r, i)) != SP_REG))
+        return -1;
+    for (int j = i + 1; j < r->nops; j++)
+        if (!may_pass(r, &r->ops[j], i))
+            return -1;
+    long s = conv_value_at(r, i);
+    return s == a || s == b ? i : -1;
+}
+
+/* Move convolution i after the ops that follow it (post_target said they
+ * may pass it), into the rule call being recorded. */
+static void sink_conv(rec *r, int i)
+{
+    rop c = r->ops[i];
+    memmove(&r->ops[i], &r->ops[i + 1], (size_t)(r->nops - 1 - i) * sizeof *r->ops);
+    r->ops[r->nops - 1] = c;
+    if (i < r->first_op)
+        r->first_op = i;
+}
+
+/* a op b as a post-operation of a convolution whose value it reads (saves
+ * a dispatch and a trip of the value through memory: the dominant cost of
+ * short rules) */
 static long try_post(rec *r, int code, long a, long b)
 {
-    mconv *m;
-    long s = conv_value(r, &m);
-    if (s < 0 || m->npost == NPOST || (a != s && b != s))
-        return -1;
     if (code != M_ADD && code != M_SUB && code != M_MUL && code != M_NEG)
         return -1;
+    int i = post_target(r, a, b);
+    if (i < 0 || r->cv[r->ops[i].arg].npost == NPOST)
+        return -1;
+    long s = conv_value_at(r, i);
+    sink_conv(r, i);
+    mconv *m = &r->cv[r->ops[r->nops - 1].arg];
     post *p = &m->post[m->npost++];
     p->code = code == M_ADD      ? P_ADD
               : code == M_MUL    ? P_MUL
@@ -485,8 +554,7 @@ static hl_prog *finish(rec *r, double *reg, int ncode, int *start, int nk)
         m->wb = m->lwb >= 0 ? at(&s, m->lwb) : NULL;
         m->shape = m->npost == 0   ? 0
                    : m->npost == 1 ? m->post[0].code
-                   : m->npost == 2 ? m->post[0].code + P_N * m->post[1].code
-                                   : -1;
+                                   : m->post[0].code + P_N * m->post[1].code;
         for (int j = 0; j < m->npost; j++) {
             m->post[j].b = at(&s, m->post[j].lb);
             m->post[j].d = at(&s, m->post[j].ld);
@@ -513,6 +581,26 @@ static void rec_init(rec *r, const hl_tape *t)
     r->t = t;
 }
 
+/* The ODE step after coefficient k's body: z_i[k+1] = f_i[k] / (k+1) as
+ * fma(f, hi, f lo), hi + lo = 1/(k+1), f * hi when lo is 0, as the compiled
+ * code does (rule.h, hl_rule_recip_split): a division is slow, a product by
+ * a rounded 1/(k+1) alone drifts the phase.  Behind M_ODE, so that a plain
+ * run stops before it.  Output i feeds input i, which is register i. */
+static void rec_ode_step(rec *r, const hl_tape *t, int k, int S)
+{
+    double hi, lo;
+    hl_rule_recip_split(&hi, &lo, k + 1);
+    r->first_op = r->nops;
+    r->ntemp = 0;
+    emit(r, M_ODE, 0, 0, 0, 0)->d = LOC(SP_REG, 0);
+    long lhi = rec_const(r, hi), llo = rec_const(r, lo);
+    for (int i = 0; i < t->nout; i++) {
+        long f = LOC(SP_REG, (long)t->outreg[i] * S + k);
+        rop *o = lo == 0 ? emit(r, M_MUL, 0, f, lhi, f) : emit(r, M_DIVIDE, 0, f, lhi, llo);
+        o->d = LOC(SP_REG, (long)i * S + k + 1);
+    }
+}
+
 /* the end of a coefficient's program: the loop stops there without a test
  * at every operation */
 static void rec_end(rec *r)
@@ -527,11 +615,13 @@ hl_prog *hl_prog_taylor(const hl_tape *t, double *td, int order)
     rec_init(&r, t);
     int S = order + 1, *start = hl_xmalloc(((size_t)S + 1) * sizeof *start);
     for (int k = 0; k <= order; k++) {
-        start[k] = r.nops;
+        start[k] = r.k_first_op = r.nops;
         for (int i = 0; i < t->ncode; i++) {
             rec_enter(&r, &t->code[i], i, S);
             hl_rule_of((hl_op)t->code[i].op)->taylor(&r.em, k);
         }
+        if (k < order && t->nin == t->nout)
+            rec_ode_step(&r, t, k, S);
         rec_end(&r);
     }
     start[S] = r.nops;

@@ -19,7 +19,10 @@
 typedef struct hl_prog hl_prog;
 
 /* The Taylor programs of coefficients 0..order of t's body over the
- * register file td (stride order + 1, constants already in place). */
+ * register file td (stride order + 1, constants already in place).  When t
+ * has as many outputs as inputs, the program of each k < order also holds
+ * the ODE step z[k+1] = f[k] / (k+1) (rule.h: fma(f, hi, f lo)), run by
+ * hl_prog_run_ode only: in the loop it costs no call, no loop of its own. */
 hl_prog *hl_prog_taylor(const hl_tape *t, double *td, int order);
 
 /* The point program of t's body over the register file r (one double per
@@ -29,6 +32,14 @@ hl_prog *hl_prog_point(const hl_tape *t, double *r);
 /* Run the program of coefficient k (0 for a point program). */
 void hl_prog_run(const hl_prog *p, int k);
 
+/* The ODE recursion: run the programs of coefficients 0 .. kend - 1 (kend
+ * <= order), each followed by its ODE step to k + 1 (hl_prog_taylor), in
+ * one call of the loop. */
+void hl_prog_run_ode(const hl_prog *p, int kend);
+
 void hl_prog_free(hl_prog *p); /* NULL is a no-op */
+
+/* The loop that runs p: "avx2" or "scalar" (prog_run.c, HAMLIE_NO_AVX2). */
+const char *hl_prog_loop(const hl_prog *p);
 
 #endif /* HAMLIE_TAPE_PROG_IMPL_H */

@@ -20,13 +20,16 @@ static inline __attribute__((always_inline)) RUN_TARGET double CAT(RUN, _table)(
 /* Threaded code: each op holds its handler's address (hl_prog_bind), so a
  * step is one indirect jump, which the branch predictor learns per handler
  * in the fixed sequence; the program of each coefficient ends with M_END,
- * so there is no test of the end.  Called with p = NULL, gives the
- * handlers' addresses in the order of mcode. */
-static RUN_TARGET void RUN(const hl_prog *p, int k, const void *const **labels)
+ * so there is no test of the end at every op, and M_END goes on to the next
+ * coefficient's program while k < kend (one call for a whole recursion, not
+ * a call and its register saves per coefficient).  Called with p = NULL,
+ * gives the handlers' addresses in the order of mcode. */
+static RUN_TARGET void RUN(const hl_prog *p, int k, int kend, int ode, const void *const **labels)
 {
-    static const void *const go[] = {&&mov,    &&neg,    &&add,     &&sub,     &&mul,    &&div,
-                                     &&fma_,   &&call_,  &&sincos_, &&conv_,   &&conv_t, &&conv_w,
-                                     &&conv_p, &&conv_l, &&conv_0,  &&conv_t0, &&end};
+    static const void *const go[] = {&&mov,     &&neg,    &&add,    &&sub,     &&mul,
+                                     &&div,     &&fma_,   &&call_,  &&sincos_, &&conv_,
+                                     &&conv_t,  &&conv_w, &&conv_p, &&conv_l,  &&conv_0,
+                                     &&conv_t0, &&ode_,   &&divide, &&end};
     _Static_assert(sizeof go / sizeof *go == M_END + 1, "a handler per mcode");
     if (p == NULL) {
         *labels = go;
@@ -87,7 +90,18 @@ conv_0:
 conv_t0:
     *o->d = CAT(RUN, _table)(&cv[o->arg]);
     NEXT();
+ode_:
+    if (!ode)
+        return;
+    NEXT();
+divide:
+    *o->d = fma(*o->a, *o->b, *o->a * *o->c);
+    NEXT();
 end:
+    if (++k < kend) { /* the next coefficient's program, in the same call */
+        o = p->op + p->start[k];
+        goto * o->go;
+    }
     return;
 #undef NEXT
 }

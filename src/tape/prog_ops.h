@@ -23,7 +23,9 @@ typedef enum mcode {
     M_CONV_LANES, /* a partner: its known sum is done already */
     M_CONV_BARE,  /* M_CONV_PLAIN, M_CONV_TABLE without post-operations */
     M_CONV_TABLE_BARE,
-    M_END /* closes the program of each coefficient */
+    M_ODE,    /* a plain run (hl_prog_run) ends here; an ODE run goes on */
+    M_DIVIDE, /* *d = fma(*a, *b, *a * *c): the ODE step f/(k+1), b + c = 1/(k+1) */
+    M_END     /* closes the program of each coefficient */
 } mcode;
 
 /* How a convolution's known terms read: x[j] y[k-j], or (w[j] x[j]) y[k-j]
@@ -74,7 +76,7 @@ typedef struct mconv {
     double *w; /* CV_TABLE, CV_WEIGHTED: w[j] for j = jl..jh */
     int kind, k, jl, jh, nf;
     fresh f[2];
-    int npost, shape; /* shape: 0 without posts, code0 (+ P_N code1) for one (two), else -1 */
+    int npost, shape; /* shape: 0 without posts, code0 for one, code0 + P_N code1 for more */
     post post[NPOST];
     /* Two convolutions of one rule call over the same x, weights and range
      * (sin's and cos's, say) read w[j] x[j] once: the first one sums the
@@ -93,7 +95,8 @@ typedef struct mconv {
 } mconv;
 
 struct hl_prog {
-    void (*run)(const hl_prog *p, int k, const void *const **labels); /* this processor's loop */
+    /* this processor's loop: the programs of k .. kend - 1; ode: go on past M_ODE */
+    void (*run)(const hl_prog *p, int k, int kend, int ode, const void *const **labels);
     mop *op;
     int nop;
     int *start; /* the program of coefficient k is op[start[k] ..], up to its M_END */

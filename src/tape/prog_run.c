@@ -19,6 +19,7 @@
  * scalar ones, and the processor picks. */
 #define _GNU_SOURCE /* sincos */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "rules/rule.h"
@@ -81,7 +82,10 @@ static double known_pair(const mconv *m, mconv *second)
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
 #define HAVE_VEC 1
-#define VEC __attribute__((target("avx2")))
+/* fma: the ODE step's fma is then one instruction, not a call; the same
+ * correctly rounded result.  The file is compiled with -ffp-contract=off
+ * (CMakeLists.txt), so that no a * b + c of the sums is fused. */
+#define VEC __attribute__((target("avx2,fma")))
 
 /* The last 1..3 terms: lanes 0..r-1 of x (and w) at j, and y[k-j..] at the
  * top of the four from y + k - j - 3, read under a mask (what is past the
@@ -103,8 +107,8 @@ static const long long top_mask[4][4] = {
 
 static inline VEC double lanes_added(__m256d acc)
 {
-    __m128d h = _mm_hadd_pd(_mm256_castpd256_pd128(acc), _mm256_extractf128_pd(acc, 1));
-    return _mm_cvtsd_f64(h) + _mm_cvtsd_f64(_mm_unpackhi_pd(h, h)); /* (l0+l1) + (l2+l3) */
+    __m256d pairs = acc + _mm256_permute_pd(acc, 0x5); /* l0+l1, ., l2+l3, . */
+    return _mm256_cvtsd_f64(pairs) + _mm_cvtsd_f64(_mm256_extractf128_pd(pairs, 1));
 }
 
 static inline VEC double known_plain_vec(const mconv *m)
@@ -209,13 +213,13 @@ static void conv_run_weights(mconv *m)
 #define CASE2(c0, c1)                                                                              \
     case c0 + P_N *c1:                                                                             \
         POST1(c0), POST2(c1);                                                                      \
-        return;
+        break;
 #define CASES2(c0)                                                                                 \
     CASE2(c0, P_ADD) CASE2(c0, P_SUB) CASE2(c0, P_RSUB) CASE2(c0, P_MUL) CASE2(c0, P_NEG)
 
-/* The operations recorded after the sum s, run in the same micro-op: one
- * or two of them by their codes' pair (m->shape), written out; longer
- * chains in a loop. */
+/* The operations recorded after the sum s, run in the same micro-op: the
+ * first one or two by their codes' pair (m->shape), written out; the rest
+ * of a longer chain in a loop. */
 static inline __attribute__((always_inline)) void conv_post(const mconv *m, double s, double *d)
 {
     *d = s;
@@ -223,12 +227,13 @@ static inline __attribute__((always_inline)) void conv_post(const mconv *m, doub
     case 0:
         return;
         CASE1(P_ADD)
-        CASE1(P_SUB) CASE1(P_RSUB) CASE1(P_MUL) CASE1(P_NEG) CASES2(P_ADD) CASES2(P_SUB)
-            CASES2(P_RSUB) CASES2(P_MUL) CASES2(P_NEG) default : for (int i = 0; i < m->npost; i++)
-        {
-            const post *p = &m->post[i];
-            *p->d = s = POST_OP(p->code, s, *p->b);
-        }
+        CASE1(P_SUB)
+        CASE1(P_RSUB) CASE1(P_MUL) CASE1(P_NEG) CASES2(P_ADD) CASES2(P_SUB) CASES2(P_RSUB)
+            CASES2(P_MUL) CASES2(P_NEG)
+    }
+    for (int i = 2; i < m->npost; i++) {
+        const post *p = &m->post[i];
+        *p->d = s = POST_OP(p->code, s, *p->b);
     }
 }
 
@@ -250,21 +255,48 @@ static inline __attribute__((always_inline)) void conv_post(const mconv *m, doub
 #include "tape/prog_loop.h"
 #endif
 
+/* HAMLIE_NO_AVX2=1 (any value but empty or "0") in the environment runs the
+ * scalar loop on processors that have AVX2 too, so that the tests cover the
+ * path of the processors without it (tests/CMakeLists: the "-scalar"
+ * tests).  Read once: a program's loop is chosen when it is bound. */
+static int avx2_allowed(void)
+{
+    static int allowed = -1; /* threads may race here: all write the same value */
+    int a = __atomic_load_n(&allowed, __ATOMIC_RELAXED);
+    if (a < 0) {
+        const char *no = getenv("HAMLIE_NO_AVX2");
+        a = no == NULL || no[0] == '\0' || strcmp(no, "0") == 0;
+        __atomic_store_n(&allowed, a, __ATOMIC_RELAXED);
+    }
+    return a;
+}
+
 void hl_prog_bind(hl_prog *p)
 {
-    void (*run)(const hl_prog *, int, const void *const **) = run_scalar;
+    void (*run)(const hl_prog *, int, int, int, const void *const **) = run_scalar;
 #if HAVE_VEC
-    if (__builtin_cpu_supports("avx2"))
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && avx2_allowed())
         run = run_vec;
 #endif
     const void *const *go;
-    run(NULL, 0, &go);
+    run(NULL, 0, 0, 0, &go);
     for (int i = 0; i < p->nop; i++)
         p->op[i].go = go[p->op[i].code];
     p->run = run;
 }
 
+const char *hl_prog_loop(const hl_prog *p)
+{
+    return p->run == run_scalar ? "scalar" : "avx2";
+}
+
 void hl_prog_run(const hl_prog *p, int k)
 {
-    p->run(p, k, NULL);
+    p->run(p, k, k + 1, 0, NULL);
+}
+
+void hl_prog_run_ode(const hl_prog *p, int kend)
+{
+    if (kend > 0)
+        p->run(p, 0, kend, 1, NULL);
 }

@@ -33,58 +33,10 @@ static void layout_d(hl_tape *t, int order)
     for (int i = 0; i < t->nregs; i++)
         if (t->isconst[i])
             t->td[(size_t)i * S] = t->rd[i];
-    t->tsplit = hl_xrealloc(t->tsplit, 2 * ((size_t)S + 1) * sizeof *t->tsplit);
-    for (int k = 0; k <= S; k++)
-        hl_rule_recip_split(&t->tsplit[2 * k], &t->tsplit[2 * k + 1], k + 1);
     hl_prog_free(t->tprog);
     t->tprog = hl_prog_taylor(t, t->td, order);
     t->ts = S;
 }
-
-/* z[k+1] = f[k] / (k+1) as fma(f, hi, f lo), hi + lo = 1/(k+1), as the
- * compiled code does (rule.h, hl_rule_recip_split): a division is slow, a
- * product by a rounded 1/(k+1) alone drifts the phase. */
-#define ODE_DIVIDE_BODY                                                                            \
-    do {                                                                                           \
-        double *next = td + k + 1;                                                                 \
-        const double *f = td + k;                                                                  \
-        if (lo == 0) {                                                                             \
-            for (int i = 0; i < n; i++)                                                            \
-                next[(size_t)i * S] = f[(size_t)outreg[i] * S] * hi;                               \
-            return;                                                                                \
-        }                                                                                          \
-        for (int i = 0; i < n; i++) {                                                              \
-            double fi = f[(size_t)outreg[i] * S];                                                  \
-            next[(size_t)i * S] = fma(fi, hi, fi * lo);                                            \
-        }                                                                                          \
-    } while (0)
-
-static void ode_divide_call(double *td, const int *outreg, int n, int S, int k, double hi,
-                            double lo)
-{
-    ODE_DIVIDE_BODY;
-}
-
-#if defined(__x86_64__) && defined(__GNUC__)
-/* The same with the fma instruction inline where the processor has one: a
- * fused multiply-add is correctly rounded either way, so the bits agree,
- * and the loop saves a library call per component. */
-__attribute__((target("fma"))) static void ode_divide_fma(double *td, const int *outreg, int n,
-                                                          int S, int k, double hi, double lo)
-{
-    ODE_DIVIDE_BODY;
-}
-
-static void ode_divide(double *td, const int *outreg, int n, int S, int k, double hi, double lo)
-{
-    if (__builtin_cpu_supports("fma"))
-        ode_divide_fma(td, outreg, n, S, k, hi, lo);
-    else
-        ode_divide_call(td, outreg, n, S, k, hi, lo);
-}
-#else
-#define ode_divide ode_divide_call
-#endif
 
 void hl_tape_taylor_d(double *out, const double *in, int order, hl_tape *t)
 {
@@ -116,10 +68,7 @@ hl_status hl_tape_taylor_ode_d(double *z, int order, hl_tape *t, hl_error *err)
         memcpy(z, td, (size_t)n * S * sizeof *z);
         return HL_OK;
     }
-    for (int k = 0; k < order; k++) {
-        hl_prog_run(t->tprog, k);
-        ode_divide(td, t->outreg, n, S, k, t->tsplit[2 * k], t->tsplit[2 * k + 1]);
-    }
+    hl_prog_run_ode(t->tprog, order); /* k = 0 .. order-1, each with z[k+1] = f[k] / (k+1) */
     memcpy(z, td, (size_t)n * S * sizeof *z);
     return HL_OK;
 }

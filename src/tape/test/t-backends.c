@@ -8,7 +8,12 @@
  * below must give the same bits (memcmp) in Taylor mode, in the ODE
  * recursion (z[k+1] = f[k] / (k+1) as hl_rule_recip_split says) and at a
  * point.  A compiled back end joins by adding a row to `backends`; the
- * compiled ones (gccjit, C text) run the ODE recursion and point values. */
+ * compiled ones (gccjit, C text) run the ODE recursion and point values.
+ *
+ * The recorded interpreter has two loops (prog_run.c): AVX2 and scalar.
+ * This test runs the one the processor picks, and again as
+ * tape/t-backends-scalar with HAMLIE_NO_AVX2=1 (CMakeLists.txt), which must
+ * select the scalar one: check_loop says so. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,6 +21,7 @@
 #include "hl_test.h"
 #include "hamlie/tape.h"
 #include "rules/test/rules_ref.h"
+#include "tape/prog_impl.h"
 #include "tape/tape_impl.h"
 
 #define ORDER 12
@@ -226,6 +232,24 @@ static void check_backend(const backend *be, hl_tape *t, const char *f)
     CHECK_MSG(same(pw, pg, 2), "%s: point value of %s differs from the rules", be->name, f);
 }
 
+/* The interpreter's loop is the one HAMLIE_NO_AVX2 and the processor ask
+ * for, so that the -scalar run does cover the scalar loop. */
+static void check_loop(hl_tape *t)
+{
+    double in[2 * S], out[2 * S];
+    inputs(in);
+    hl_tape_taylor_d(out, in, ORDER, t);
+    const char *no = getenv("HAMLIE_NO_AVX2");
+    int forced = no != NULL && no[0] != '\0' && strcmp(no, "0") != 0;
+    const char *want = "scalar";
+#if defined(__x86_64__) && defined(__GNUC__)
+    if (!forced && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+        want = "avx2";
+#endif
+    CHECK_MSG(strcmp(hl_prog_loop(t->tprog), want) == 0, "the interpreter runs its %s loop, not %s",
+              hl_prog_loop(t->tprog), want);
+}
+
 int main(void)
 {
     hl_pool *P = hl_pool_new();
@@ -243,6 +267,8 @@ int main(void)
         CHECK_MSG(has_op(t, cases[c].op), "%s does not compile to %s", cases[c].f,
                   hl_op_name(cases[c].op));
         covered[cases[c].op] = 1;
+        if (c == 0)
+            check_loop(t);
         for (size_t b = 0; b < sizeof backends / sizeof *backends; b++)
             if (backends[b].prepare(t))
                 check_backend(&backends[b], t, cases[c].f);

@@ -1,0 +1,32 @@
+#!/bin/bash
+# The double Taylor interpreter of several builds side by side (issue 14's
+# "no speed regression"): bench/taylor_interp.c built against each, run
+# interleaved ROUNDS times, each run the best of 1000 rounds of 100 calls
+# (short rounds: on a loaded machine some run without interruption); prints
+# per system and build the median and the minimum ns per call.
+#   bench/run-interp.sh ROUNDS BIN...
+# A build of another commit (the old interpreter a4ae1ce, say):
+#   git worktree add /tmp/old a4ae1ce && cmake -S /tmp/old -B /tmp/old/build \
+#     -DCMAKE_BUILD_TYPE=RelWithDebInfo && cmake --build /tmp/old/build --target hamlie_static
+#   cc -O2 bench/taylor_interp.c -I /tmp/old/include /tmp/old/build/libhamlie.a \
+#     -lflint-arb -lflint -lmpfr -lgmp -lgccjit -lm -ldl -o /tmp/interp-old
+# The scalar loop of a build: a wrapper that sets HAMLIE_NO_AVX2=1.
+set -e
+R=$1
+shift
+out=$(mktemp)
+trap 'rm -f "$out"' EXIT
+for r in $(seq "$R"); do
+    for b in "$@"; do
+        "$b" 1000 100 | awk -v b="$(basename "$b")" '{print b, $1, $2}' >>"$out"
+    done
+done
+/usr/bin/python3 - "$out" <<'PY'
+import collections, statistics, sys
+d = collections.defaultdict(list)
+for line in open(sys.argv[1]):
+    b, s, v = line.split()
+    d[(s, b)].append(float(v))
+for (s, b), v in sorted(d.items()):
+    print("%-13s %-16s median %7.1f  min %7.1f ns/call  n=%d" % (s, b, statistics.median(v), min(v), len(v)))
+PY
