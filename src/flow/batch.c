@@ -25,7 +25,6 @@
 typedef struct lane {
     int member; /* -1: idle */
     double thi, tlo, tend, dir;
-    double *z, *zlo; /* n each */
     int first;
     long nsteps;
     hl_flow_pace pace;
@@ -37,8 +36,13 @@ struct hl_flow_batch {
     int n, p, L;
     double atol, rtol, ln_atol, ln_rtol, ln_tol;
     lane *lanes;
-    double *coef;                   /* n * (p+1): one lane's coefficients, gathered */
-    double *zt, *dz, *fz, *lo_next; /* n each: flow.c's scratch */
+    /* by component i and lane l at i * L + l, so that the lanes' sums run
+     * side by side: the states, their carried rounding (flow.c's zlo),
+     * the states after the step and the rounding they carry */
+    double *z, *zlo, *znew, *lonew;
+    double *h;            /* L: each lane's step, signed (0: no step) */
+    double *coef;         /* n * (p+1): one lane's coefficients, gathered */
+    double *zt, *dz, *fz; /* n each: check_step's scratch */
     double eps;
     int check;
 };
@@ -68,16 +72,18 @@ hl_status hl_flow_batch_new(hl_flow_batch **out, hl_tape *f, double atol, double
     b->ln_rtol = log(rtol);
     b->ln_tol = log(fmax(fmin(atol, rtol), HL_FLOW_MIN_RTOL));
     b->lanes = hl_xcalloc((size_t)lanes, sizeof *b->lanes);
-    for (int l = 0; l < lanes; l++) {
+    for (int l = 0; l < lanes; l++)
         b->lanes[l].member = -1;
-        b->lanes[l].z = hl_xcalloc((size_t)b->n, sizeof(double));
-        b->lanes[l].zlo = hl_xcalloc((size_t)b->n, sizeof(double));
-    }
+    size_t nl = (size_t)b->n * (size_t)lanes;
+    b->z = hl_xcalloc(nl, sizeof(double));
+    b->zlo = hl_xcalloc(nl, sizeof(double));
+    b->znew = hl_xcalloc(nl, sizeof(double));
+    b->lonew = hl_xcalloc(nl, sizeof(double));
+    b->h = hl_xcalloc((size_t)lanes, sizeof(double));
     b->coef = hl_xcalloc((size_t)b->n * (p + 1), sizeof *b->coef);
     b->zt = hl_xcalloc((size_t)b->n, sizeof *b->zt);
     b->dz = hl_xcalloc((size_t)b->n, sizeof *b->dz);
     b->fz = hl_xcalloc((size_t)b->n, sizeof *b->fz);
-    b->lo_next = hl_xcalloc((size_t)b->n, sizeof *b->lo_next);
     *out = b;
     return HL_OK;
 }
@@ -86,16 +92,16 @@ void hl_flow_batch_free(hl_flow_batch *b)
 {
     if (b == NULL)
         return;
-    for (int l = 0; l < b->L; l++) {
-        free(b->lanes[l].z);
-        free(b->lanes[l].zlo);
-    }
     free(b->lanes);
+    free(b->z);
+    free(b->zlo);
+    free(b->znew);
+    free(b->lonew);
+    free(b->h);
     free(b->coef);
     free(b->zt);
     free(b->dz);
     free(b->fz);
-    free(b->lo_next);
     hl_tape_batch_free(b->tb);
     free(b);
 }
@@ -141,17 +147,6 @@ static void horner(double *z, const double *coef, int n, int p, double h)
         z[i] = coef[(size_t)i * S] + increment(coef + (size_t)i * S, p, h, h * h);
 }
 
-static void advance(double *z, double *lo, const double *coef, int n, int p, double h)
-{
-    const int S = p + 1;
-    for (int i = 0; i < n; i++) {
-        const double *c = coef + (size_t)i * S;
-        double a = c[0], b = increment(c, p, h, h * h) + lo[i], s = a + b, bv = s - a;
-        lo[i] = (a - (s - bv)) + (b - bv);
-        z[i] = s;
-    }
-}
-
 static void horner_derivative(double *dz, const double *coef, int n, int p, double h)
 {
     for (int i = 0; i < n; i++) {
@@ -163,23 +158,58 @@ static void horner_derivative(double *dz, const double *coef, int n, int p, doub
     }
 }
 
-static inline double add_norms(double *win, const double *cw, int nw)
+/* flow.c's advance for every lane at once, lane l by its own step h[l]
+ * (the same operations per lane; the lanes' loops are innermost, so that
+ * the compiler runs them side by side: AL lanes, a constant) */
+static inline __attribute__((always_inline)) void advance_lanes(double *z, double *lo,
+                                                                const double *coef, const double *h,
+                                                                int n, int p, const int AL)
 {
-    double sum = 0;
-    for (int j = 0; j < nw; j++) {
-        double a = fabs(cw[j]);
-        win[j] = a > win[j] ? a : win[j];
-        sum += a;
+    const int S = p + 1, top_e = p & ~1, top_o = (p - 1) | 1;
+    double h2[HL_TAPE_BATCH_MAX_LANES], e[HL_TAPE_BATCH_MAX_LANES], o[HL_TAPE_BATCH_MAX_LANES];
+    for (int l = 0; l < AL; l++)
+        h2[l] = h[l] * h[l];
+    for (int i = 0; i < n; i++) {
+        const double *c = coef + (size_t)i * S * AL;
+        for (int l = 0; l < AL; l++) {
+            e[l] = c[top_e * AL + l];
+            o[l] = top_o <= p ? c[top_o * AL + l] : 0;
+        }
+        for (int k = top_e - 2; k >= 2; k -= 2)
+            for (int l = 0; l < AL; l++)
+                e[l] = e[l] * h2[l] + c[k * AL + l];
+        for (int k = top_o - 2; k >= 1; k -= 2)
+            for (int l = 0; l < AL; l++)
+                o[l] = o[l] * h2[l] + c[k * AL + l];
+        for (int l = 0; l < AL; l++) {
+            double a = c[l], b = (h[l] * o[l] + h2[l] * e[l]) + lo[i * AL + l], s = a + b,
+                   bv = s - a;
+            lo[i * AL + l] = (a - (s - bv)) + (b - bv);
+            z[i * AL + l] = s;
+        }
     }
-    return sum;
 }
 
-static int all_finite(const double *z, int n)
+static void advance_all(hl_flow_batch *b)
 {
-    for (int i = 0; i < n; i++)
-        if (!isfinite(z[i]))
-            return 0;
-    return 1;
+    const double *c = hl_tape_batch_coefs(b->tb);
+    memcpy(b->lonew, b->zlo, (size_t)b->n * b->L * sizeof *b->zlo);
+    switch (b->L) { /* the lane count a constant: the loops become vectors */
+    case 1:
+        advance_lanes(b->znew, b->lonew, c, b->h, b->n, b->p, 1);
+        break;
+    case 2:
+        advance_lanes(b->znew, b->lonew, c, b->h, b->n, b->p, 2);
+        break;
+    case 4:
+        advance_lanes(b->znew, b->lonew, c, b->h, b->n, b->p, 4);
+        break;
+    case 8:
+        advance_lanes(b->znew, b->lonew, c, b->h, b->n, b->p, 8);
+        break;
+    default:
+        advance_lanes(b->znew, b->lonew, c, b->h, b->n, b->p, HL_TAPE_BATCH_MAX_LANES);
+    }
 }
 
 /* ---- one lane's step ---------------------------------------------------------- */
@@ -194,18 +224,22 @@ static void gather(hl_flow_batch *b, int l)
             b->coef[(size_t)i * S + k] = z[((size_t)i * S + k) * L + l];
 }
 
-/* flow.c's step_size on the gathered coefficients */
-static int step_size(double *h, hl_flow_batch *b, double t, hl_error *err)
+/* flow.c's step_size on lane l's coefficients, where they are */
+static int step_size(double *h, hl_flow_batch *b, int l, double t, hl_error *err)
 {
-    const int n = b->n, p = b->p, S = p + 1;
-    const double *c = b->coef;
+    const int n = b->n, p = b->p, S = p + 1, L = b->L;
+    const double *c = hl_tape_batch_coefs(b->tb) + l;
     const int lo = hl_flow_window_lo(p), nw = p - lo + 1;
     double n0 = 0, sum = 0, win[HL_FLOW_WINDOW] = {0};
     for (int i = 0; i < n; i++) {
-        const double *ci = c + (size_t)i * S;
+        const double *ci = c + (size_t)i * S * L;
         double a0 = fabs(ci[0]);
         n0 = a0 > n0 ? a0 : n0;
-        sum += add_norms(win, ci + lo, nw);
+        for (int j = 0; j < nw; j++) { /* flow.c's add_norms */
+            double a = fabs(ci[(size_t)(lo + j) * L]);
+            win[j] = a > win[j] ? a : win[j];
+            sum += a;
+        }
     }
     if (!isfinite(sum))
         win[nw - 1] = NAN;
@@ -246,30 +280,42 @@ static int check_step(double *h, hl_flow_batch *b, double dir, double t, hl_erro
     }
 }
 
-/* One step of lane l from its coefficients (flow.c's drive, one turn of
- * its loop without outputs or events).  1 when the member is done (*st its
- * status), else 0. */
-static int lane_step(hl_flow_batch *b, lane *ln, int l, hl_status *st, hl_error *err)
+/* Lane l's step from its coefficients (flow.c's drive, the first half of
+ * one turn of its loop): b->h[l], signed.  *st != HL_OK if it fails. */
+static void lane_size(hl_flow_batch *b, lane *ln, int l, hl_status *st, hl_error *err)
 {
-    gather(b, l);
     double rem = ln->dir * ((ln->tend - ln->thi) - ln->tlo), h;
-    if ((*st = step_size(&h, b, ln->thi, err)) != HL_OK)
-        return 1;
+    b->h[l] = 0;
+    if ((*st = step_size(&h, b, l, ln->thi, err)) != HL_OK)
+        return;
     if (h > rem)
         h = rem;
-    if ((b->check || ln->first) && (*st = check_step(&h, b, ln->dir, ln->thi, err)) != HL_OK)
-        return 1;
-    ln->first = 0;
-    int last = h == rem;
-    memcpy(b->lo_next, ln->zlo, (size_t)b->n * sizeof *ln->zlo);
-    advance(b->zt, b->lo_next, b->coef, b->n, b->p, ln->dir * h);
-    if (!all_finite(b->zt, b->n)) {
-        *st = hl_error_set(err, HL_EDOM, NULL, -1, 0, "the solution is not finite at t = %.17g",
-                           ln->thi + ln->dir * h);
-        return 1;
+    if (b->check || ln->first) {
+        gather(b, l);
+        if ((*st = check_step(&h, b, ln->dir, ln->thi, err)) != HL_OK)
+            return;
     }
-    memcpy(ln->z, b->zt, (size_t)b->n * sizeof *ln->z);
-    memcpy(ln->zlo, b->lo_next, (size_t)b->n * sizeof *ln->zlo);
+    ln->first = 0;
+    b->h[l] = ln->dir * h;
+}
+
+/* The second half, after advance_all: lane l's new state kept, its time
+ * moved.  1 when the member is done (*st its status), else 0. */
+static int lane_step(hl_flow_batch *b, lane *ln, int l, hl_status *st, hl_error *err)
+{
+    const int n = b->n, L = b->L;
+    double h = ln->dir * b->h[l], rem = ln->dir * ((ln->tend - ln->thi) - ln->tlo);
+    int last = h == rem;
+    for (int i = 0; i < n; i++)
+        if (!isfinite(b->znew[i * L + l])) {
+            *st = hl_error_set(err, HL_EDOM, NULL, -1, 0, "the solution is not finite at t = %.17g",
+                               ln->thi + ln->dir * h);
+            return 1;
+        }
+    for (int i = 0; i < n; i++) {
+        b->z[i * L + l] = b->znew[i * L + l];
+        b->zlo[i * L + l] = b->lonew[i * L + l];
+    }
     ln->nsteps++;
     if (last) {
         ln->thi = ln->tend;
@@ -302,8 +348,9 @@ typedef struct members {
 
 static void finish(hl_flow_batch *b, lane *ln, members *m, hl_status st, const hl_error *e)
 {
-    int i = ln->member;
-    memcpy(m->z + (size_t)i * b->n, ln->z, (size_t)b->n * sizeof *m->z);
+    int i = ln->member, l = (int)(ln - b->lanes);
+    for (int c = 0; c < b->n; c++)
+        m->z[(size_t)i * b->n + c] = b->z[c * b->L + l];
     m->t[i] = ln->thi + ln->tlo;
     m->status[i] = st;
     if (m->nsteps != NULL)
@@ -332,8 +379,10 @@ static void take_next(hl_flow_batch *b, lane *ln, members *m)
         ln->tlo = 0;
         ln->tend = m->t1[i];
         ln->dir = ln->tend >= ln->thi ? 1 : -1;
-        memcpy(ln->z, m->z + (size_t)i * b->n, (size_t)b->n * sizeof *ln->z);
-        memset(ln->zlo, 0, (size_t)b->n * sizeof *ln->zlo);
+        for (int c = 0, l = (int)(ln - b->lanes); c < b->n; c++) {
+            b->z[c * b->L + l] = m->z[(size_t)i * b->n + c];
+            b->zlo[c * b->L + l] = 0;
+        }
         ln->first = 1;
         ln->nsteps = 0;
         ln->pace = (hl_flow_pace){0};
@@ -352,9 +401,9 @@ static void load_states(hl_flow_batch *b, int busy)
     const int S = b->p + 1, L = b->L;
     double *z = hl_tape_batch_coefs(b->tb);
     for (int l = 0; l < L; l++) {
-        const lane *ln = &b->lanes[b->lanes[l].member >= 0 ? l : busy];
+        int from = b->lanes[l].member >= 0 ? l : busy;
         for (int i = 0; i < b->n; i++)
-            z[(size_t)i * S * L + l] = ln->z[i];
+            z[(size_t)i * S * L + l] = b->z[i * L + from];
     }
 }
 
@@ -375,10 +424,19 @@ hl_status hl_flow_batch_evolve(hl_flow_batch *b, int B, double *t, const double 
             break;
         load_states(b, busy);
         hl_tape_batch_ode(b->tb);
+        hl_status st;
+        hl_error e;
         for (int l = 0; l < b->L; l++) {
             lane *ln = &b->lanes[l];
-            hl_status st;
-            hl_error e;
+            if (ln->member < 0)
+                continue;
+            lane_size(b, ln, l, &st, &e);
+            if (st != HL_OK)
+                finish(b, ln, &m, st, &e); /* b->h[l] = 0: no step */
+        }
+        advance_all(b);
+        for (int l = 0; l < b->L; l++) {
+            lane *ln = &b->lanes[l];
             if (ln->member >= 0 && lane_step(b, ln, l, &st, &e))
                 finish(b, ln, &m, st, &e);
         }

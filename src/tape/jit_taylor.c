@@ -403,8 +403,9 @@ hl_status hl_tape_jit_taylor_lanes(void **result, void (**fn)(double *R), const 
         hl_buf_printf(&inputs, "lanes %d\n", lanes);
     hl_jit_code *code;
     recursion r = {t, order, lanes};
-    hl_status status = hl_jit_obtain(&code, HL_JIT_SITE_TAYLOR, &inputs, build, &r, "hl_native",
-                                     lanes > 1 ? "the batch recursion" : "the recursion", err);
+    hl_status status =
+        hl_jit_obtain(&code, lanes > 1 ? HL_JIT_SITE_BATCH : HL_JIT_SITE_TAYLOR, &inputs, build, &r,
+                      "hl_native", lanes > 1 ? "the batch recursion" : "the recursion", err);
     hl_buf_clear(&inputs);
     if (status != HL_OK)
         return status;

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# Batch-mode benchmark (issue 15 part 5): members per second of the Taylor
+# integrator on an ensemble (Henon-Heiles, tol 1e-15, t = 1000, 64 members
+# from invariant curves to the chaotic sea), hamlie one member at a time
+# (interpreted, compiled) against its batch mode (2, 4, 8 SIMD lanes), and
+# heyoka 7.2.1's scalar and batch integrators on the same members (only if
+# $HEYOKA_PREFIX, default /opt/heyoka, exists: a peer, never a dependency;
+# built here with Debian's g++ 12 at -O2 against the prebuilt libheyoka of
+# /work/shared/peers/heyoka, LLVM JIT inside it).
+#
+# Usage: bench/taylor_batch.sh [build-dir] [reps] [members] [T]
+#   defaults: build, 5, 64, 1000
+# Then the compilation itself (cache off, wall clock) and, with
+# TB_CALLGRIND=1, instruction counts per mode (valgrind --tool=callgrind,
+# 16 members to t = 100: the machine is shared and wall times are noisy).
+# CPU time of the integration alone, the best of reps; compare within one
+# run of this script.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${1:-build}
+reps=${2:-5}
+B=${3:-64}
+T=${4:-1000}
+hy=${HEYOKA_PREFIX:-/opt/heyoka}
+out=$build/taylor-batch
+mkdir -p "$out"
+export HAMLIE_CACHE_DIR=${HAMLIE_CACHE_DIR:-$out/cache}
+
+cmake --build "$build" -j2 --target bench-taylor_batch >/dev/null
+echo "# bench/taylor_batch.sh  $(date -u '+%F %T UTC')  commit $(git rev-parse --short HEAD)"
+echo "# reps $reps  members $B  T $T  load $(cut -d' ' -f1-3 /proc/loadavg)  cpus $(nproc)"
+"$build/bench-taylor_batch" "$B" "$T" "$reps"
+if [ -f "$hy/lib/libheyoka.so" ]; then
+    g++ -O2 -DNDEBUG -std=c++20 -I"$hy/include" bench/taylor_batch_heyoka.cpp \
+        -o "$out/taylor_batch_heyoka" -L"$hy/lib" -Wl,-rpath,"$hy/lib" \
+        -lheyoka -lfmt -lboost_serialization 2>/dev/null
+    "$out/taylor_batch_heyoka" "$B" "$T" "$reps" | tail -n +1
+else
+    echo "# heyoka not found at $hy: bash /work/shared/peers/heyoka/install.sh" >&2
+fi
+
+echo "# compile (HAMLIE_CACHE=off, in process, wall ms): mode setup_ms"
+for m in single-native batch-4 batch-8; do
+    HAMLIE_CACHE=off "$build/bench-taylor_batch" 4 1 1 "$m" | awk -F, -v m="$m" '$1 == m {print "#", m, $8}'
+done
+
+if [ "${TB_CALLGRIND:-0}" = 1 ] && command -v valgrind >/dev/null; then
+    echo "# callgrind: instructions of the whole process (tape, compiled code from the cache), 16 members to t = 100"
+    for m in single-interp single-native batch-2 batch-4 batch-8; do
+        "$build/bench-taylor_batch" 16 100 1 "$m" noref >/dev/null # fill the cache: no compilation under valgrind
+        n=$(valgrind --tool=callgrind --callgrind-out-file=/dev/null \
+            "$build/bench-taylor_batch" 16 100 1 "$m" noref 2>&1 >/dev/null | awk '/refs:/ {gsub(",", "", $4); print $4}')
+        echo "# $m $n"
+    done
+    if [ -f "$out/taylor_batch_heyoka" ]; then
+        for m in heyoka-scalar heyoka-batch-4; do
+            n=$(valgrind --tool=callgrind --callgrind-out-file=/dev/null \
+                "$out/taylor_batch_heyoka" 16 100 1 "$m" 2>&1 >/dev/null | awk '/refs:/ {gsub(",", "", $4); print $4}')
+            echo "# $m $n (JIT compilation included)"
+        done
+    fi
+fi
