@@ -15,6 +15,20 @@
 # 16 members to t = 100: the machine is shared and wall times are noisy).
 # CPU time of the integration alone, the best of reps; compare within one
 # run of this script.
+#
+# Measured 2026-11-28 (commit 2b4fe38; AMD EPYC with AVX-512, 2 cores shared
+# by several jobs, load ~16; members per second, 64 members, the best of 5):
+#   hamlie  single-interp 415   single-native 1069   batch-2 2067
+#           batch-4 2671   batch-8 2838   (every member bit for bit the
+#           single run's; 177655 steps in all)
+#   heyoka  scalar 1153   batch-2 1793   batch-4 2678   batch-8 3341
+#           (177610 steps)
+#   compiling, cache off, wall: single 1.3 s, 4 lanes 1.1 s, 8 lanes 1.5 s
+#   (loaded machine; a cached entry loads in well under 1 ms)
+#   callgrind, 16 members to t = 100 (4436 steps), instructions a step
+#   after the process's own 11.2-11.5 M: single-interp 8770,
+#   single-native 3063, batch-2 2166, batch-4 1747, batch-8 2314
+#   (valgrind's CPU has no AVX-512: 8 lanes are two AVX2 vectors there).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
