@@ -59,20 +59,21 @@ for m in single-native batch-4 batch-8; do
 done
 
 if [ "${TB_CALLGRIND:-0}" = 1 ] && command -v valgrind >/dev/null; then
-    echo "# callgrind: instructions of the whole process (tape, compiled code from the cache), 16 members to t = 100"
+    # instructions inside the integration calls alone (--toggle-collect),
+    # 16 members to t = 100; the cache is filled under valgrind first: its
+    # CPU has no AVX-512, so the key (-march) differs from the machine's
+    echo "# callgrind: instructions in hl_flow_evolve / hl_flow_batch_evolve / heyoka's propagate_until_impl, 16 members to t = 100"
+    cg() { valgrind --tool=callgrind --callgrind-out-file=/dev/null --toggle-collect="$1" "${@:2}" 2>&1 >/dev/null |
+        awk '/refs:/ {gsub(",", "", $4); print $4; exit}'; }
     for m in single-interp single-native batch-2 batch-4 batch-8; do
-        # fill the cache under valgrind first: its CPU has no AVX-512, so the
-        # key (-march) differs from the machine's; then no compilation is counted
         valgrind --tool=none "$build/bench-taylor_batch" 16 1 1 "$m" noref >/dev/null 2>&1
-        n=$(valgrind --tool=callgrind --callgrind-out-file=/dev/null \
-            "$build/bench-taylor_batch" 16 100 1 "$m" noref 2>&1 >/dev/null | awk '/refs:/ {gsub(",", "", $4); print $4; exit}')
-        echo "# $m $n"
+        f=hl_flow_evolve
+        [ "${m#batch}" != "$m" ] && f=hl_flow_batch_evolve
+        echo "# $m $(cg $f "$build/bench-taylor_batch" 16 100 1 "$m" noref)"
     done
     if [ -f "$out/taylor_batch_heyoka" ]; then
-        for m in heyoka-scalar heyoka-batch-4; do
-            n=$(valgrind --tool=callgrind --callgrind-out-file=/dev/null \
-                "$out/taylor_batch_heyoka" 16 100 1 "$m" 2>&1 >/dev/null | awk '/refs:/ {gsub(",", "", $4); print $4; exit}')
-            echo "# $m $n (JIT compilation included)"
+        for m in heyoka-scalar heyoka-batch-4 heyoka-batch-8; do
+            echo "# $m $(cg '*propagate_until_impl*' "$out/taylor_batch_heyoka" 16 100 1 "$m")"
         done
     fi
 fi
