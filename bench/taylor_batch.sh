@@ -25,10 +25,13 @@
 #           (177610 steps)
 #   compiling, cache off, wall: single 1.3 s, 4 lanes 1.1 s, 8 lanes 1.5 s
 #   (loaded machine; a cached entry loads in well under 1 ms)
-#   callgrind, 16 members to t = 100 (4436 steps), instructions a step
-#   after the process's own 11.2-11.5 M: single-interp 8770,
-#   single-native 3063, batch-2 2166, batch-4 1747, batch-8 2314
-#   (valgrind's CPU has no AVX-512: 8 lanes are two AVX2 vectors there).
+#   callgrind, 16 members to t = 100 (4436 steps both), instructions a
+#   member-step inside the integration calls: hamlie single-interp 8770,
+#   single-native 3063, batch-2 2166, batch-4 1747, batch-8 2262; heyoka
+#   scalar 2484, batch-4 1066, batch-8 1066 (valgrind's CPU has no
+#   AVX-512: 8 lanes are two AVX2 vectors there).  Of hamlie's batch-4
+#   step some 600 are the recursion and the rest the per-lane step logic
+#   (norms, logs, exp, the time), which heyoka runs in SIMD too.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
