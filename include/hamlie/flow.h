@@ -111,6 +111,44 @@ hl_status hl_flow_run(hl_flow *flow, double t0, const double *z0, const double *
 hl_status hl_flow_eval_at(hl_flow *flow, double t0, const double *z0, const double *ts, int n,
                           double *out, hl_error *err);
 
+/* ---- batch: many members, side by side in SIMD lanes -----------------------
+ * The same integrator for B members of one system at once (heyoka's batch
+ * mode): the Taylor recursions of `lanes` members run as one compiled
+ * recursion over vectors (tape.h, hl_tape_batch; 4 lanes fill AVX2's
+ * registers), and each lane picks its own step by the single integrator's
+ * rule from its own coefficients, with its own start and end time.  Each
+ * member ends exactly where hl_flow_evolve would have taken it: the same
+ * steps, the same coefficients, the same bits (hl_flow_native_for's
+ * choice never changes those).  A lane whose member is done, or fails,
+ * takes the next member; one that blows up stops alone.  Without
+ * libgccjit the lanes' recursions run one by one (the same results).
+ * Compiling costs what hl_tape_native does (once per tape, order and lane
+ * count; kept in the disk cache), so a batch pays for ensembles of long
+ * runs.  No outputs at given times and no events: final states only.  A
+ * batch borrows its tape and its scratch: one thread per batch and tape. */
+typedef struct hl_flow_batch hl_flow_batch;
+
+/* Tolerances as hl_flow_new; lanes a power of 2 up to
+ * HL_TAPE_BATCH_MAX_LANES (4 for AVX2, 8 for AVX-512).  Compiles the
+ * recursion (or finds it in the disk cache). */
+hl_status hl_flow_batch_new(hl_flow_batch **out, hl_tape *f, double atol, double rtol, int lanes,
+                            hl_error *err);
+void hl_flow_batch_free(hl_flow_batch *batch); /* NULL is a no-op */
+int hl_flow_batch_order(const hl_flow_batch *batch);
+int hl_flow_batch_lanes(const hl_flow_batch *batch);
+int hl_flow_batch_compiled(const hl_flow_batch *batch); /* 1: SIMD code, 0: lane by lane */
+
+/* Integrate member i (i < B, any B >= 0) from t[i] to t1[i] (either
+ * direction): z[i*n .. i*n + n-1] in and out, t[i] == t1[i] on success.
+ * status[i] (B values) is each member's outcome, as hl_flow_evolve's; a
+ * member that fails keeps its last good step in z and t, with its error in
+ * errs[i] when errs is not NULL (B values, cleared on success).  nsteps[i],
+ * if not NULL: the member's steps.  Returns HL_OK if every member reached
+ * its end, else the first failing member's status, err naming it
+ * ("member 3: ..."); the others went on either way. */
+hl_status hl_flow_batch_evolve(hl_flow_batch *batch, int B, double *t, const double *t1, double *z,
+                               hl_status *status, long *nsteps, hl_error *errs, hl_error *err);
+
 /* ---- Arb ---------------------------------------------------------------
  * The same integrator in Arb at about digits decimal digits (tolerance
  * 10^-digits, absolute and relative; precision digits*log2(10) + 32 bits).

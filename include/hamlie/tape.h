@@ -331,6 +331,40 @@ int hl_newton_jit_active(const hl_newton *nw);
  * hl_tape_compile_pays; 0 without libgccjit or for NULL). */
 int hl_newton_compile_pays(const hl_newton *nw, long solves);
 
+/* ---- the Taylor-ODE recursion of several members at once (batch) ----------
+ * hl_tape_taylor_ode_d for `lanes` states side by side: one recursion over
+ * values that are vectors of lanes doubles (SIMD: 4 lanes fill AVX2's
+ * registers, 8 AVX-512's), compiled by libgccjit; each lane's coefficients
+ * are those of hl_tape_taylor_ode_d for that lane's state, to the last bit
+ * (the same operations in the same order, lane by lane).  Without libgccjit
+ * (or if it fails) the lanes run one by one through hl_tape_taylor_ode_d,
+ * with the same results.  The compiled code goes through the disk cache
+ * like the single recursion's.  A batch borrows its tape (which must
+ * outlive it) and, without compiled code, its scratch: one thread per
+ * batch and tape. */
+#define HL_TAPE_BATCH_MAX_LANES 16
+
+typedef struct hl_tape_batch hl_tape_batch;
+
+/* lanes: a power of 2, 1..HL_TAPE_BATCH_MAX_LANES; order >= 0.  HL_EINVAL
+ * for a tape that is not square, or lanes or order out of range.  A program
+ * too large to compile (instructions * order^2 / 2 > 4e6 terms, as
+ * hl_tape_native) or a failed compilation runs lane by lane (HL_OK). */
+hl_status hl_tape_batch_new(hl_tape_batch **out, hl_tape *tape, int order, int lanes,
+                            hl_error *err);
+void hl_tape_batch_free(hl_tape_batch *batch); /* NULL is a no-op */
+int hl_tape_batch_lanes(const hl_tape_batch *batch);
+int hl_tape_batch_order(const hl_tape_batch *batch);
+/* 1 if the recursion runs as compiled SIMD code, 0 if lane by lane. */
+int hl_tape_batch_compiled(const hl_tape_batch *batch);
+
+/* The batch's coefficients, owned by it: coefficient k of input i in lane
+ * l at z[(i * (order+1) + k) * lanes + l] (lanes side by side).  Set k = 0
+ * of every input in every lane, then hl_tape_batch_ode fills k = 1..order.
+ * Aligned for the vectors; valid until hl_tape_batch_free. */
+double *hl_tape_batch_coefs(hl_tape_batch *batch);
+void hl_tape_batch_ode(hl_tape_batch *batch);
+
 #ifdef __cplusplus
 }
 #endif

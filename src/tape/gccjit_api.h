@@ -71,7 +71,9 @@
     X(gcc_jit_block_end_with_jump)                                                                 \
     X(gcc_jit_block_end_with_conditional)                                                          \
     X(gcc_jit_block_end_with_return)                                                               \
-    X(gcc_jit_block_end_with_void_return)
+    X(gcc_jit_block_end_with_void_return)                                                          \
+    X(gcc_jit_type_get_vector)                                                                     \
+    X(gcc_jit_context_new_rvalue_from_vector)
 
 /* One pointer per function, of the type <libgccjit.h> declares it with. */
 typedef struct hl_gccjit_api {
@@ -147,6 +149,8 @@ int hl_gccjit_not_failed(void);
 #define gcc_jit_block_end_with_conditional (hl_gccjit.gcc_jit_block_end_with_conditional)
 #define gcc_jit_block_end_with_return (hl_gccjit.gcc_jit_block_end_with_return)
 #define gcc_jit_block_end_with_void_return (hl_gccjit.gcc_jit_block_end_with_void_return)
+#define gcc_jit_type_get_vector (hl_gccjit.gcc_jit_type_get_vector)
+#define gcc_jit_context_new_rvalue_from_vector (hl_gccjit.gcc_jit_context_new_rvalue_from_vector)
 #endif /* HL_GCCJIT_API_IMPL */
 
 #endif /* HAMLIE_HAVE_GCCJIT */

@@ -51,6 +51,8 @@ static const struct {
     [HL_JIT_SITE_EVAL] = {"eval", 2, 0},
     [HL_JIT_SITE_NEWTON] = {"newton", 2, 0},
     [HL_JIT_SITE_TAYLOR] = {"taylor", 1, 1},
+    /* -O2: the lanes' code at -O1 ran at half the speed (bench/taylor_batch.c) */
+    [HL_JIT_SITE_BATCH] = {"batch", 2, 1},
 };
 
 static struct {

@@ -16,6 +16,7 @@ typedef enum hl_jit_site {
     HL_JIT_SITE_EVAL,   /* hl_tape_jit: point evaluation and the loops */
     HL_JIT_SITE_NEWTON, /* hl_newton_jit */
     HL_JIT_SITE_TAYLOR, /* hl_tape_jit_taylor: the recursion of one order */
+    HL_JIT_SITE_BATCH,  /* hl_tape_batch_new: that recursion over lanes (jit_batch.c) */
 } hl_jit_site;
 
 /* What each site's builder reads, as text: the part of the key that is the

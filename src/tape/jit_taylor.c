@@ -10,7 +10,16 @@
  * local, so that GCC need not assume that a store through the register
  * file changes what it has loaded (the recurrences are load-bound); the
  * inputs' coefficients go back to the register file at the end, which is
- * all hl_tape_taylor_ode_d reads. */
+ * all hl_tape_taylor_ode_d reads.
+ *
+ * Lanes (hl_tape_batch, jit_batch.c): the same emitter with every value a
+ * GCC vector of L doubles (L = 2, 4, 8, 16), one member of a batch per
+ * lane.  A vector's +, -, *, / and negation are the scalar operations lane
+ * by lane, so each lane's coefficients are the single member's to the last
+ * bit; what has no vector form in libgccjit 12 (fma, libm's functions)
+ * runs lane by lane on scalars read through the vector's address and is
+ * put back together (calls are made at k = 0 only; fma is the ODE step's
+ * division).  The register file is then R[(reg * S + j) * L + lane]. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -39,7 +48,9 @@ typedef struct gval {
 typedef struct gem {
     hl_em em;
     gcc_jit_context *c;
-    gcc_jit_type *dbl;
+    gcc_jit_type *dbl, *dblp;
+    gcc_jit_type *vt; /* a value's type: dbl, or a vector of L doubles */
+    int L;            /* lanes (1: the single member's recursion) */
     gcc_jit_function *fun;
     gcc_jit_block *blk;
     gcc_jit_rvalue *R; /* the register file, the function's parameter */
@@ -77,9 +88,21 @@ static gcc_jit_rvalue *RV(gem *E, hl_ev a)
     return E->v[a.i].r;
 }
 
+/* x in every lane */
+static gcc_jit_rvalue *immediate(gem *E, double x)
+{
+    gcc_jit_rvalue *d = gcc_jit_context_new_rvalue_from_double(E->c, E->dbl, x);
+    if (E->L == 1)
+        return d;
+    gcc_jit_rvalue *els[HL_TAPE_BATCH_MAX_LANES];
+    for (int l = 0; l < E->L; l++)
+        els[l] = d;
+    return gcc_jit_context_new_rvalue_from_vector(E->c, NULL, E->vt, (size_t)E->L, els);
+}
+
 static hl_ev number(gem *E, double x)
 {
-    return push(E, gcc_jit_context_new_rvalue_from_double(E->c, E->dbl, x), 1, x);
+    return push(E, immediate(E, x), 1, x);
 }
 
 static hl_ev g_num(hl_em *em, long p, long q)
@@ -106,7 +129,7 @@ static gcc_jit_lvalue *local_of(gem *E, int reg, int j)
     if (*l == NULL) {
         char name[32];
         snprintf(name, sizeof name, "c%d_%d", reg, j);
-        *l = gcc_jit_function_new_local(E->fun, NULL, E->dbl, name);
+        *l = gcc_jit_function_new_local(E->fun, NULL, E->vt, name);
     }
     return *l;
 }
@@ -141,7 +164,7 @@ static hl_ev binary(gem *E, enum gcc_jit_binary_op op, hl_ev a, hl_ev b)
                          : op == GCC_JIT_BINARY_OP_MULT  ? x * y
                                                          : x / y);
     }
-    return push(E, gcc_jit_context_new_binary_op(E->c, NULL, op, E->dbl, RV(E, a), RV(E, b)), 0, 0);
+    return push(E, gcc_jit_context_new_binary_op(E->c, NULL, op, E->vt, RV(E, a), RV(E, b)), 0, 0);
 }
 
 static hl_ev g_add(hl_em *em, hl_ev a, hl_ev b)
@@ -166,9 +189,66 @@ static hl_ev g_neg(hl_em *em, hl_ev a)
     gem *E = GE(em);
     if (V(E, a)->isnum)
         return number(E, -V(E, a)->v);
-    return push(E,
-                gcc_jit_context_new_unary_op(E->c, NULL, GCC_JIT_UNARY_OP_MINUS, E->dbl, RV(E, a)),
-                0, 0);
+    return push(
+        E, gcc_jit_context_new_unary_op(E->c, NULL, GCC_JIT_UNARY_OP_MINUS, E->vt, RV(E, a)), 0, 0);
+}
+
+/* a fresh local named t<n> holding v (of type type): a call is made once
+ * however often a rule reads its value */
+static gcc_jit_rvalue *temporary(gem *E, gcc_jit_type *type, gcc_jit_rvalue *v)
+{
+    char name[32];
+    snprintf(name, sizeof name, "t%d", E->ntmp++);
+    gcc_jit_lvalue *l = gcc_jit_function_new_local(E->fun, NULL, type, name);
+    gcc_jit_block_add_assignment(E->blk, NULL, l, v);
+    return gcc_jit_lvalue_as_rvalue(l);
+}
+
+/* a fresh vector local holding v, whose lanes can be read */
+static gcc_jit_lvalue *spill(gem *E, gcc_jit_rvalue *v)
+{
+    char name[32];
+    snprintf(name, sizeof name, "v%d", E->ntmp++);
+    gcc_jit_lvalue *l = gcc_jit_function_new_local(E->fun, NULL, E->vt, name);
+    gcc_jit_block_add_assignment(E->blk, NULL, l, v);
+    return l;
+}
+
+/* Lane l of the vector local v, read through its address as a double. */
+static gcc_jit_rvalue *lane(gem *E, gcc_jit_lvalue *v, int l)
+{
+    gcc_jit_rvalue *p =
+        gcc_jit_context_new_cast(E->c, NULL, gcc_jit_lvalue_get_address(v, NULL), E->dblp);
+    gcc_jit_type *it = gcc_jit_context_get_type(E->c, GCC_JIT_TYPE_INT);
+    return gcc_jit_lvalue_as_rvalue(gcc_jit_context_new_array_access(
+        E->c, NULL, p, gcc_jit_context_new_rvalue_from_int(E->c, it, l)));
+}
+
+/* f (scalar) applied to args: with lanes, once per lane on the lanes' own
+ * scalars (a known number stays an immediate), the results made a vector
+ * again.  The value is a temporary: the calls are made once. */
+static gcc_jit_rvalue *call_per_lane(gem *E, gcc_jit_function *f, int nargs, const hl_ev *args)
+{
+    gcc_jit_rvalue *x[3];
+    if (E->L == 1) {
+        for (int i = 0; i < nargs; i++)
+            x[i] = RV(E, args[i]);
+        return temporary(E, E->dbl, gcc_jit_context_new_call(E->c, NULL, f, nargs, x));
+    }
+    gcc_jit_lvalue *v[3] = {NULL, NULL, NULL};
+    for (int i = 0; i < nargs; i++)
+        if (!V(E, args[i])->isnum)
+            v[i] = spill(E, RV(E, args[i]));
+    gcc_jit_rvalue *out[HL_TAPE_BATCH_MAX_LANES];
+    for (int l = 0; l < E->L; l++) {
+        for (int i = 0; i < nargs; i++)
+            x[i] = v[i] != NULL
+                       ? lane(E, v[i], l)
+                       : gcc_jit_context_new_rvalue_from_double(E->c, E->dbl, V(E, args[i])->v);
+        out[l] = temporary(E, E->dbl, gcc_jit_context_new_call(E->c, NULL, f, nargs, x));
+    }
+    return temporary(E, E->vt,
+                     gcc_jit_context_new_rvalue_from_vector(E->c, NULL, E->vt, (size_t)E->L, out));
 }
 
 /* GCC's fma: one instruction where the machine has FMA (add_host_isa),
@@ -179,8 +259,8 @@ static hl_ev g_fma(hl_em *em, hl_ev a, hl_ev b, hl_ev c)
     if (both_known(E, a, b) && V(E, c)->isnum)
         return number(E, fma(V(E, a)->v, V(E, b)->v, V(E, c)->v));
     gcc_jit_function *f = gcc_jit_context_get_builtin_function(E->c, "__builtin_fma");
-    gcc_jit_rvalue *args[3] = {RV(E, a), RV(E, b), RV(E, c)};
-    return push(E, gcc_jit_context_new_call(E->c, NULL, f, 3, args), 0, 0);
+    hl_ev args[3] = {a, b, c};
+    return push(E, call_per_lane(E, f, 3, args), 0, 0);
 }
 
 
@@ -203,24 +283,12 @@ static gcc_jit_function *lib(gem *E, hl_pfn f)
     return E->lib[f];
 }
 
-/* a fresh local named t<n> holding v: a call is made once however often a
- * rule reads its value */
-static gcc_jit_rvalue *temporary(gem *E, gcc_jit_rvalue *v)
-{
-    char name[32];
-    snprintf(name, sizeof name, "t%d", E->ntmp++);
-    gcc_jit_lvalue *l = gcc_jit_function_new_local(E->fun, NULL, E->dbl, name);
-    gcc_jit_block_add_assignment(E->blk, NULL, l, v);
-    return gcc_jit_lvalue_as_rvalue(l);
-}
-
 static hl_ev g_call(hl_em *em, hl_pfn f, hl_ev a, hl_ev b)
 {
     gem *E = GE(em);
-    gcc_jit_rvalue *args[2] = {RV(E, a), RV(E, b)};
+    hl_ev args[2] = {a, b};
     int nargs = f == HL_PFN_ATAN2 || f == HL_PFN_POW ? 2 : 1;
-    return push(E, temporary(E, gcc_jit_context_new_call(E->c, NULL, lib(E, f), nargs, args)), 0,
-                0);
+    return push(E, call_per_lane(E, lib(E, f), nargs, args), 0, 0);
 }
 
 /* kept values: locals set at k = 0 */
@@ -229,7 +297,7 @@ static void g_keep(hl_em *em, int slot, hl_ev v)
     gem *E = GE(em);
     char name[32];
     snprintf(name, sizeof name, "k%d_%d", E->i, slot);
-    gcc_jit_lvalue *l = gcc_jit_function_new_local(E->fun, NULL, E->dbl, name);
+    gcc_jit_lvalue *l = gcc_jit_function_new_local(E->fun, NULL, E->vt, name);
     gcc_jit_block_add_assignment(E->blk, NULL, l, RV(E, v));
     E->keep[2 * E->i + slot] = l;
 }
@@ -289,17 +357,20 @@ static void build_recursion(gem *E, int order)
 
 typedef struct recursion {
     const hl_tape *t;
-    int order;
+    int order, lanes;
 } recursion;
 
-/* void hl_native(double *R) in context c (hl_jit_build_fn). */
+/* void hl_native(double *R) in context c (hl_jit_build_fn); with lanes, R
+ * points to vectors of L doubles. */
 static void build(gcc_jit_context *c, const void *arg)
 {
     const recursion *r = arg;
     const hl_tape *t = r->t;
-    gem E = {.em = {&g_ops}, .c = c, .t = t, .S = r->order + 1};
+    gem E = {.em = {&g_ops}, .c = c, .t = t, .S = r->order + 1, .L = r->lanes};
     E.dbl = gcc_jit_context_get_type(c, GCC_JIT_TYPE_DOUBLE);
-    gcc_jit_param *prm = gcc_jit_context_new_param(c, NULL, gcc_jit_type_get_pointer(E.dbl), "R");
+    E.dblp = gcc_jit_type_get_pointer(E.dbl);
+    E.vt = E.L == 1 ? E.dbl : gcc_jit_type_get_vector(E.dbl, (size_t)E.L);
+    gcc_jit_param *prm = gcc_jit_context_new_param(c, NULL, gcc_jit_type_get_pointer(E.vt), "R");
     E.fun = gcc_jit_context_new_function(c, NULL, GCC_JIT_FUNCTION_EXPORTED,
                                          gcc_jit_context_get_type(c, GCC_JIT_TYPE_VOID),
                                          "hl_native", 1, &prm, 0);
@@ -319,13 +390,22 @@ static void build(gcc_jit_context *c, const void *arg)
 hl_status hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tape *t, int order,
                              hl_error *err)
 {
+    return hl_tape_jit_taylor_lanes(result, fn, t, order, 1, err);
+}
+
+hl_status hl_tape_jit_taylor_lanes(void **result, void (**fn)(double *R), const hl_tape *t,
+                                   int order, int lanes, hl_error *err)
+{
     hl_buf inputs;
     hl_buf_init(&inputs);
     hl_jit_inputs_taylor(&inputs, t, order);
+    if (lanes > 1) /* the single recursion's key stays as it was */
+        hl_buf_printf(&inputs, "lanes %d\n", lanes);
     hl_jit_code *code;
-    recursion r = {t, order};
-    hl_status status = hl_jit_obtain(&code, HL_JIT_SITE_TAYLOR, &inputs, build, &r, "hl_native",
-                                     "the recursion", err);
+    recursion r = {t, order, lanes};
+    hl_status status =
+        hl_jit_obtain(&code, lanes > 1 ? HL_JIT_SITE_BATCH : HL_JIT_SITE_TAYLOR, &inputs, build, &r,
+                      "hl_native", lanes > 1 ? "the batch recursion" : "the recursion", err);
     hl_buf_clear(&inputs);
     if (status != HL_OK)
         return status;
@@ -344,7 +424,13 @@ void hl_tape_jit_release(void *result)
 hl_status hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tape *t, int order,
                              hl_error *err)
 {
-    (void)result, (void)fn, (void)t, (void)order;
+    return hl_tape_jit_taylor_lanes(result, fn, t, order, 1, err);
+}
+
+hl_status hl_tape_jit_taylor_lanes(void **result, void (**fn)(double *R), const hl_tape *t,
+                                   int order, int lanes, hl_error *err)
+{
+    (void)result, (void)fn, (void)t, (void)order, (void)lanes;
     return hl_error_set(err, HL_EUNSUP, NULL, -1, 0, "hamlie was built without libgccjit");
 }
 

@@ -80,5 +80,11 @@ void hl_tape_consts_arb(arb_ptr r, slong prec, const hl_tape *tape);
 hl_status hl_tape_jit_taylor(void **result, void (**fn)(double *R), const hl_tape *t, int order,
                              hl_error *err);
 void hl_tape_jit_release(void *result);
+/* The same recursion with every value a vector of lanes doubles (lanes a
+ * power of 2 up to HL_TAPE_BATCH_MAX_LANES; 1 is hl_tape_jit_taylor): R
+ * holds coefficient j of input i of lane l at (i * (order+1) + j) * lanes
+ * + l, aligned to lanes doubles (jit_batch.c). */
+hl_status hl_tape_jit_taylor_lanes(void **result, void (**fn)(double *R), const hl_tape *t,
+                                   int order, int lanes, hl_error *err);
 
 #endif

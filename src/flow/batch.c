@@ -1,0 +1,447 @@
+/* The Taylor integrator on several members at once (flow.h, hl_flow_batch):
+ * the members' recursions run side by side in the SIMD lanes of one
+ * hl_tape_batch, and each lane steps by its own coefficients exactly as
+ * flow.c's driver does, so that each member ends where hl_flow_evolve
+ * would have taken it, to the last bit.  A lane whose member is done (or
+ * failed) takes the next member waiting: the lanes stay busy until fewer
+ * members are left than lanes.
+ *
+ * NOTE: increment, advance, horner, horner_derivative, add_norms and
+ * time_add below are flow.c's, copied (flow.c is not this file's to
+ * change); flow/t-batch compares every member with hl_flow_evolve bit for
+ * bit, so a change to one copy alone fails it.  They belong in a shared
+ * header of the flow layer. */
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/buf.h"
+#include "flow/flow_impl.h"
+#include "hamlie/flow.h"
+
+/* One lane: the member it integrates and that member's driver state
+ * (flow.c's drive, unrolled into a state machine). */
+typedef struct lane {
+    int member; /* -1: idle */
+    double thi, tlo, tend, dir;
+    int first;
+    long nsteps;
+    hl_flow_pace pace;
+} lane;
+
+struct hl_flow_batch {
+    hl_tape *f;
+    hl_tape_batch *tb;
+    int n, p, L;
+    double atol, rtol, ln_atol, ln_rtol, ln_tol;
+    lane *lanes;
+    /* by component i and lane l at i * L + l, so that the lanes' sums run
+     * side by side: the states, their carried rounding (flow.c's zlo),
+     * the states after the step and the rounding they carry */
+    double *z, *zlo, *znew, *lonew;
+    double *h;            /* L: each lane's step, signed (0: no step) */
+    double *coef;         /* n * (p+1): one lane's coefficients, gathered */
+    double *zt, *dz, *fz; /* n each: check_step's scratch */
+    double eps;
+    int check;
+};
+
+hl_status hl_flow_batch_new(hl_flow_batch **out, hl_tape *f, double atol, double rtol, int lanes,
+                            hl_error *err)
+{
+    *out = NULL;
+    hl_flow *single; /* the same checks and order as hl_flow_new */
+    hl_status st = hl_flow_new(&single, f, atol, rtol, err);
+    if (st != HL_OK)
+        return st;
+    int p = hl_flow_order(single);
+    hl_flow_free(single);
+    hl_tape_batch *tb;
+    if ((st = hl_tape_batch_new(&tb, f, p, lanes, err)) != HL_OK)
+        return st;
+    hl_flow_batch *b = hl_xcalloc(1, sizeof *b);
+    b->f = f;
+    b->tb = tb;
+    b->n = hl_tape_ninputs(f);
+    b->p = p;
+    b->L = lanes;
+    b->atol = atol;
+    b->rtol = rtol;
+    b->ln_atol = log(atol);
+    b->ln_rtol = log(rtol);
+    b->ln_tol = log(fmax(fmin(atol, rtol), HL_FLOW_MIN_RTOL));
+    b->lanes = hl_xcalloc((size_t)lanes, sizeof *b->lanes);
+    for (int l = 0; l < lanes; l++)
+        b->lanes[l].member = -1;
+    size_t nl = (size_t)b->n * (size_t)lanes;
+    b->z = hl_xcalloc(nl, sizeof(double));
+    b->zlo = hl_xcalloc(nl, sizeof(double));
+    b->znew = hl_xcalloc(nl, sizeof(double));
+    b->lonew = hl_xcalloc(nl, sizeof(double));
+    b->h = hl_xcalloc((size_t)lanes, sizeof(double));
+    b->coef = hl_xcalloc((size_t)b->n * (p + 1), sizeof *b->coef);
+    b->zt = hl_xcalloc((size_t)b->n, sizeof *b->zt);
+    b->dz = hl_xcalloc((size_t)b->n, sizeof *b->dz);
+    b->fz = hl_xcalloc((size_t)b->n, sizeof *b->fz);
+    *out = b;
+    return HL_OK;
+}
+
+void hl_flow_batch_free(hl_flow_batch *b)
+{
+    if (b == NULL)
+        return;
+    free(b->lanes);
+    free(b->z);
+    free(b->zlo);
+    free(b->znew);
+    free(b->lonew);
+    free(b->h);
+    free(b->coef);
+    free(b->zt);
+    free(b->dz);
+    free(b->fz);
+    hl_tape_batch_free(b->tb);
+    free(b);
+}
+
+int hl_flow_batch_order(const hl_flow_batch *b)
+{
+    return b->p;
+}
+int hl_flow_batch_lanes(const hl_flow_batch *b)
+{
+    return b->L;
+}
+int hl_flow_batch_compiled(const hl_flow_batch *b)
+{
+    return hl_tape_batch_compiled(b->tb);
+}
+
+/* ---- flow.c's arithmetic (see the NOTE above) ------------------------------ */
+
+static void time_add(double *hi, double *lo, double h)
+{
+    double s = *hi + h, bv = s - *hi;
+    double e = (*hi - (s - bv)) + (h - bv) + *lo;
+    *hi = s + e;
+    *lo = e - (*hi - s);
+}
+
+static inline double increment(const double *c, int p, double h, double h2)
+{
+    const int top_e = p & ~1, top_o = (p - 1) | 1;
+    double e = c[top_e], o = top_o <= p ? c[top_o] : 0;
+    for (int k = top_e - 2; k >= 2; k -= 2)
+        e = e * h2 + c[k];
+    for (int k = top_o - 2; k >= 1; k -= 2)
+        o = o * h2 + c[k];
+    return h * o + h2 * e;
+}
+
+static void horner(double *z, const double *coef, int n, int p, double h)
+{
+    const int S = p + 1;
+    for (int i = 0; i < n; i++)
+        z[i] = coef[(size_t)i * S] + increment(coef + (size_t)i * S, p, h, h * h);
+}
+
+static void horner_derivative(double *dz, const double *coef, int n, int p, double h)
+{
+    for (int i = 0; i < n; i++) {
+        const double *c = coef + (size_t)i * (p + 1);
+        double d = p * c[p];
+        for (int k = p - 1; k >= 1; k--)
+            d = d * h + k * c[k];
+        dz[i] = d;
+    }
+}
+
+/* flow.c's advance for every lane at once, lane l by its own step h[l]
+ * (the same operations per lane; the lanes' loops are innermost, so that
+ * the compiler runs them side by side: AL lanes, a constant) */
+static inline __attribute__((always_inline)) void advance_lanes(double *z, double *lo,
+                                                                const double *coef, const double *h,
+                                                                int n, int p, const int AL)
+{
+    const int S = p + 1, top_e = p & ~1, top_o = (p - 1) | 1;
+    double h2[HL_TAPE_BATCH_MAX_LANES], e[HL_TAPE_BATCH_MAX_LANES], o[HL_TAPE_BATCH_MAX_LANES];
+    for (int l = 0; l < AL; l++)
+        h2[l] = h[l] * h[l];
+    for (int i = 0; i < n; i++) {
+        const double *c = coef + (size_t)i * S * AL;
+        for (int l = 0; l < AL; l++) {
+            e[l] = c[top_e * AL + l];
+            o[l] = top_o <= p ? c[top_o * AL + l] : 0;
+        }
+        for (int k = top_e - 2; k >= 2; k -= 2)
+            for (int l = 0; l < AL; l++)
+                e[l] = e[l] * h2[l] + c[k * AL + l];
+        for (int k = top_o - 2; k >= 1; k -= 2)
+            for (int l = 0; l < AL; l++)
+                o[l] = o[l] * h2[l] + c[k * AL + l];
+        for (int l = 0; l < AL; l++) {
+            double a = c[l], b = (h[l] * o[l] + h2[l] * e[l]) + lo[i * AL + l], s = a + b,
+                   bv = s - a;
+            lo[i * AL + l] = (a - (s - bv)) + (b - bv);
+            z[i * AL + l] = s;
+        }
+    }
+}
+
+static void advance_all(hl_flow_batch *b)
+{
+    const double *c = hl_tape_batch_coefs(b->tb);
+    memcpy(b->lonew, b->zlo, (size_t)b->n * b->L * sizeof *b->zlo);
+    switch (b->L) { /* the lane count a constant: the loops become vectors */
+    case 1:
+        advance_lanes(b->znew, b->lonew, c, b->h, b->n, b->p, 1);
+        break;
+    case 2:
+        advance_lanes(b->znew, b->lonew, c, b->h, b->n, b->p, 2);
+        break;
+    case 4:
+        advance_lanes(b->znew, b->lonew, c, b->h, b->n, b->p, 4);
+        break;
+    case 8:
+        advance_lanes(b->znew, b->lonew, c, b->h, b->n, b->p, 8);
+        break;
+    default:
+        advance_lanes(b->znew, b->lonew, c, b->h, b->n, b->p, HL_TAPE_BATCH_MAX_LANES);
+    }
+}
+
+/* ---- one lane's step ---------------------------------------------------------- */
+
+/* lane l's coefficients out of the batch into b->coef (flow.c's layout) */
+static void gather(hl_flow_batch *b, int l)
+{
+    const int S = b->p + 1, L = b->L;
+    const double *z = hl_tape_batch_coefs(b->tb);
+    for (int i = 0; i < b->n; i++)
+        for (int k = 0; k < S; k++)
+            b->coef[(size_t)i * S + k] = z[((size_t)i * S + k) * L + l];
+}
+
+/* flow.c's step_size on lane l's coefficients, where they are */
+static int step_size(double *h, hl_flow_batch *b, int l, double t, hl_error *err)
+{
+    const int n = b->n, p = b->p, S = p + 1, L = b->L;
+    const double *c = hl_tape_batch_coefs(b->tb) + l;
+    const int lo = hl_flow_window_lo(p), nw = p - lo + 1;
+    double n0 = 0, sum = 0, win[HL_FLOW_WINDOW] = {0};
+    for (int i = 0; i < n; i++) {
+        const double *ci = c + (size_t)i * S * L;
+        double a0 = fabs(ci[0]);
+        n0 = a0 > n0 ? a0 : n0;
+        for (int j = 0; j < nw; j++) { /* flow.c's add_norms */
+            double a = fabs(ci[(size_t)(lo + j) * L]);
+            win[j] = a > win[j] ? a : win[j];
+            sum += a;
+        }
+    }
+    if (!isfinite(sum))
+        win[nw - 1] = NAN;
+    int relative = b->rtol * n0 > b->atol;
+    b->eps = relative ? b->rtol * n0 : b->atol;
+    double ln_eps = relative ? b->ln_rtol + log(n0) : b->ln_atol;
+    *h = hl_flow_step_for(&b->check, b->eps, ln_eps, b->ln_tol, win, p);
+    if (isnan(*h))
+        return hl_error_set(
+            err, HL_EDOM, NULL, -1, 0,
+            "the solution is not finite (Taylor coefficients overflow) at t = %.17g", t);
+    if (*h < DBL_MIN || *h <= 4 * DBL_EPSILON * fabs(t))
+        return hl_error_set(err, HL_ENOCONV, NULL, -1, 0,
+                            "step size underflow (h = %g) at t = %.17g", *h, t);
+    return HL_OK;
+}
+
+/* flow.c's check_step */
+static int check_step(double *h, hl_flow_batch *b, double dir, double t, hl_error *err)
+{
+    const int n = b->n;
+    for (;;) {
+        horner(b->zt, b->coef, n, b->p, dir * *h);
+        horner_derivative(b->dz, b->coef, n, b->p, dir * *h);
+        hl_tape_eval_d(b->fz, b->zt, b->f);
+        double defect = 0;
+        for (int i = 0; i < n; i++) {
+            double d = fabs(b->dz[i] - b->fz[i]);
+            defect = d > defect || isnan(d) ? d : defect;
+        }
+        double next = hl_flow_shrink(*h, defect, b->eps, b->p);
+        if (next == 0)
+            return HL_OK;
+        if (next <= 4 * DBL_EPSILON * fabs(t) || next < DBL_MIN)
+            return hl_error_set(err, HL_ENOCONV, NULL, -1, 0,
+                                "step size underflow (h = %g) at t = %.17g", next, t);
+        *h = next;
+    }
+}
+
+/* Lane l's step from its coefficients (flow.c's drive, the first half of
+ * one turn of its loop): b->h[l], signed.  *st != HL_OK if it fails. */
+static void lane_size(hl_flow_batch *b, lane *ln, int l, hl_status *st, hl_error *err)
+{
+    double rem = ln->dir * ((ln->tend - ln->thi) - ln->tlo), h;
+    b->h[l] = 0;
+    if ((*st = step_size(&h, b, l, ln->thi, err)) != HL_OK)
+        return;
+    if (h > rem)
+        h = rem;
+    if (b->check || ln->first) {
+        gather(b, l);
+        if ((*st = check_step(&h, b, ln->dir, ln->thi, err)) != HL_OK)
+            return;
+    }
+    ln->first = 0;
+    b->h[l] = ln->dir * h;
+}
+
+/* The second half, after advance_all: lane l's new state kept, its time
+ * moved.  1 when the member is done (*st its status), else 0. */
+static int lane_step(hl_flow_batch *b, lane *ln, int l, hl_status *st, hl_error *err)
+{
+    const int n = b->n, L = b->L;
+    double h = ln->dir * b->h[l], rem = ln->dir * ((ln->tend - ln->thi) - ln->tlo);
+    int last = h == rem;
+    for (int i = 0; i < n; i++)
+        if (!isfinite(b->znew[i * L + l])) {
+            *st = hl_error_set(err, HL_EDOM, NULL, -1, 0, "the solution is not finite at t = %.17g",
+                               ln->thi + ln->dir * h);
+            return 1;
+        }
+    for (int i = 0; i < n; i++) {
+        b->z[i * L + l] = b->znew[i * L + l];
+        b->zlo[i * L + l] = b->lonew[i * L + l];
+    }
+    ln->nsteps++;
+    if (last) {
+        ln->thi = ln->tend;
+        ln->tlo = 0;
+    } else {
+        time_add(&ln->thi, &ln->tlo, ln->dir * h);
+    }
+    double done;
+    if (hl_flow_stalled(&ln->pace, h, &done)) {
+        *st = hl_flow_no_progress(err, done, ln->thi);
+        return 1;
+    }
+    *st = HL_OK;
+    return ln->dir * ((ln->tend - ln->thi) - ln->tlo) <= 0;
+}
+
+/* ---- the members through the lanes ------------------------------------------- */
+
+typedef struct members {
+    int B, next;
+    double *t;
+    const double *t1;
+    double *z;
+    hl_status *status;
+    long *nsteps;
+    hl_error *errs;
+    int failed;     /* the first member (by index) that failed, or B */
+    hl_error first; /* and its error */
+} members;
+
+static void finish(hl_flow_batch *b, lane *ln, members *m, hl_status st, const hl_error *e)
+{
+    int i = ln->member, l = (int)(ln - b->lanes);
+    for (int c = 0; c < b->n; c++)
+        m->z[(size_t)i * b->n + c] = b->z[c * b->L + l];
+    m->t[i] = ln->thi + ln->tlo;
+    m->status[i] = st;
+    if (m->nsteps != NULL)
+        m->nsteps[i] = ln->nsteps;
+    if (m->errs != NULL) {
+        if (st == HL_OK)
+            hl_error_clear(&m->errs[i]);
+        else
+            m->errs[i] = *e;
+    }
+    if (st != HL_OK && i < m->failed) {
+        m->failed = i;
+        m->first = *e;
+    }
+    ln->member = -1;
+}
+
+/* Lane ln takes the next member that needs a step (members already at
+ * their end, or with times that are not finite, finish at once). */
+static void take_next(hl_flow_batch *b, lane *ln, members *m)
+{
+    while (ln->member < 0 && m->next < m->B) {
+        int i = m->next++;
+        ln->member = i;
+        ln->thi = m->t[i];
+        ln->tlo = 0;
+        ln->tend = m->t1[i];
+        ln->dir = ln->tend >= ln->thi ? 1 : -1;
+        for (int c = 0, l = (int)(ln - b->lanes); c < b->n; c++) {
+            b->z[c * b->L + l] = m->z[(size_t)i * b->n + c];
+            b->zlo[c * b->L + l] = 0;
+        }
+        ln->first = 1;
+        ln->nsteps = 0;
+        ln->pace = (hl_flow_pace){0};
+        hl_error e;
+        if (!isfinite(ln->thi) || !isfinite(ln->tend))
+            finish(b, ln, m, hl_error_set(&e, HL_EINVAL, NULL, -1, 0, "times must be finite"), &e);
+        else if (ln->dir * ((ln->tend - ln->thi) - ln->tlo) <= 0)
+            finish(b, ln, m, HL_OK, NULL);
+    }
+}
+
+/* the lanes' states as coefficient 0 of the batch; an idle lane repeats
+ * a busy one (its result is not read; a real state keeps it finite) */
+static void load_states(hl_flow_batch *b, int busy)
+{
+    const int S = b->p + 1, L = b->L;
+    double *z = hl_tape_batch_coefs(b->tb);
+    for (int l = 0; l < L; l++) {
+        int from = b->lanes[l].member >= 0 ? l : busy;
+        for (int i = 0; i < b->n; i++)
+            z[(size_t)i * S * L + l] = b->z[i * L + from];
+    }
+}
+
+hl_status hl_flow_batch_evolve(hl_flow_batch *b, int B, double *t, const double *t1, double *z,
+                               hl_status *status, long *nsteps, hl_error *errs, hl_error *err)
+{
+    if (B < 0)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "a negative number of members (%d)", B);
+    members m = {B, 0, t, t1, z, status, nsteps, errs, B, {0}};
+    for (;;) {
+        int busy = -1;
+        for (int l = 0; l < b->L; l++) {
+            take_next(b, &b->lanes[l], &m);
+            if (b->lanes[l].member >= 0)
+                busy = l;
+        }
+        if (busy < 0)
+            break;
+        load_states(b, busy);
+        hl_tape_batch_ode(b->tb);
+        hl_status st;
+        hl_error e;
+        for (int l = 0; l < b->L; l++) {
+            lane *ln = &b->lanes[l];
+            if (ln->member < 0)
+                continue;
+            lane_size(b, ln, l, &st, &e);
+            if (st != HL_OK)
+                finish(b, ln, &m, st, &e); /* b->h[l] = 0: no step */
+        }
+        advance_all(b);
+        for (int l = 0; l < b->L; l++) {
+            lane *ln = &b->lanes[l];
+            if (ln->member >= 0 && lane_step(b, ln, l, &st, &e))
+                finish(b, ln, &m, st, &e);
+        }
+    }
+    if (m.failed == B)
+        return HL_OK;
+    return hl_error_set(err, m.first.status, NULL, -1, 0, "member %d: %s", m.failed, m.first.msg);
+}
