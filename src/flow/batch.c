@@ -6,11 +6,11 @@
  * failed) takes the next member waiting: the lanes stay busy until fewer
  * members are left than lanes.
  *
- * NOTE: increment, advance, horner, horner_derivative, add_norms and
- * time_add below are flow.c's, copied (flow.c is not this file's to
- * change); flow/t-batch compares every member with hl_flow_evolve bit for
- * bit, so a change to one copy alone fails it.  They belong in a shared
- * header of the flow layer. */
+ * NOTE: the polynomial arithmetic is flow_poly.h's, shared with flow.c;
+ * advance and add_norms are flow.c's written lane by lane here (the lanes'
+ * loops innermost, so that they run side by side): flow/t-batch compares
+ * every member with hl_flow_evolve bit for bit, so a change to one of them
+ * alone fails it. */
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
@@ -18,6 +18,7 @@
 
 #include "base/buf.h"
 #include "flow/flow_impl.h"
+#include "flow/flow_poly.h"
 #include "hamlie/flow.h"
 
 /* One lane: the member it integrates and that member's driver state
@@ -117,45 +118,6 @@ int hl_flow_batch_lanes(const hl_flow_batch *b)
 int hl_flow_batch_compiled(const hl_flow_batch *b)
 {
     return hl_tape_batch_compiled(b->tb);
-}
-
-/* ---- flow.c's arithmetic (see the NOTE above) ------------------------------ */
-
-static void time_add(double *hi, double *lo, double h)
-{
-    double s = *hi + h, bv = s - *hi;
-    double e = (*hi - (s - bv)) + (h - bv) + *lo;
-    *hi = s + e;
-    *lo = e - (*hi - s);
-}
-
-static inline double increment(const double *c, int p, double h, double h2)
-{
-    const int top_e = p & ~1, top_o = (p - 1) | 1;
-    double e = c[top_e], o = top_o <= p ? c[top_o] : 0;
-    for (int k = top_e - 2; k >= 2; k -= 2)
-        e = e * h2 + c[k];
-    for (int k = top_o - 2; k >= 1; k -= 2)
-        o = o * h2 + c[k];
-    return h * o + h2 * e;
-}
-
-static void horner(double *z, const double *coef, int n, int p, double h)
-{
-    const int S = p + 1;
-    for (int i = 0; i < n; i++)
-        z[i] = coef[(size_t)i * S] + increment(coef + (size_t)i * S, p, h, h * h);
-}
-
-static void horner_derivative(double *dz, const double *coef, int n, int p, double h)
-{
-    for (int i = 0; i < n; i++) {
-        const double *c = coef + (size_t)i * (p + 1);
-        double d = p * c[p];
-        for (int k = p - 1; k >= 1; k--)
-            d = d * h + k * c[k];
-        dz[i] = d;
-    }
 }
 
 /* flow.c's advance for every lane at once, lane l by its own step h[l]

@@ -7,6 +7,7 @@
 
 #include "base/buf.h"
 #include "flow/flow_impl.h"
+#include "flow/flow_poly.h"
 #include "hamlie/event.h"
 #include "hamlie/flow.h"
 
@@ -158,39 +159,6 @@ static void native_decide(hl_flow *fl, double t, double h)
 }
 long hl_flow_nsteps(const hl_flow *fl) { return fl->nsteps; }
 
-/* Time as an unevaluated sum hi + lo (Knuth's two-sum). */
-static void time_add(double *hi, double *lo, double h)
-{
-    double s = *hi + h, bv = s - *hi;
-    double e = (*hi - (s - bv)) + (h - bv) + *lo;
-    *hi = s + e;
-    *lo = e - (*hi - s);
-}
-
-/* sum_{k>=1} c[k] h^k, h2 = h^2, as h O(h^2) + h^2 E(h^2): the odd and the
- * even coefficients by Horner in h^2, two chains of p/2 multiply-adds that
- * the processor runs side by side, where one Horner chain of p was a fifth
- * of a step of Kepler's problem.  p >= 2. */
-static inline double increment(const double *c, int p, double h, double h2)
-{
-    const int top_e = p & ~1, top_o = (p - 1) | 1;
-    double e = c[top_e], o = top_o <= p ? c[top_o] : 0;
-    for (int k = top_e - 2; k >= 2; k -= 2)
-        e = e * h2 + c[k];
-    for (int k = top_o - 2; k >= 1; k -= 2)
-        o = o * h2 + c[k];
-    return h * o + h2 * e;
-}
-
-/* z_i = sum_k c_i[k] h^k, the state c_i[0] added last: one rounding at the
- * state's scale (see advance) */
-static void horner(double *z, const double *coef, int n, int p, double h)
-{
-    const int S = p + 1;
-    for (int i = 0; i < n; i++)
-        z[i] = coef[(size_t)i * S] + increment(coef + (size_t)i * S, p, h, h * h);
-}
-
 /* The state after a step, z_i = c_i[0] + increment, with the rounding of
  * that sum carried in lo_i to the next step's (compensated summation,
  * Knuth's two-sum): below tolerances of about 1e-14 the error of a long run
@@ -206,18 +174,6 @@ static void advance(double *z, double *lo, const double *coef, int n, int p, dou
         double a = c[0], b = increment(c, p, h, h * h) + lo[i], s = a + b, bv = s - a;
         lo[i] = (a - (s - bv)) + (b - bv);
         z[i] = s;
-    }
-}
-
-/* dz_i = sum_k k c_i[k] h^(k-1), the derivative of the step's polynomial */
-static void horner_derivative(double *dz, const double *coef, int n, int p, double h)
-{
-    for (int i = 0; i < n; i++) {
-        const double *c = coef + (size_t)i * (p + 1);
-        double d = p * c[p];
-        for (int k = p - 1; k >= 1; k--)
-            d = d * h + k * c[k];
-        dz[i] = d;
     }
 }
 
