@@ -69,6 +69,20 @@ typedef void (*hl_event_state_fn)(double *z, double tau, void *arg);
 int hl_event_first(hl_event *ev, hl_event_state_fn state, void *arg, double a, double b, double ga,
                    double *tau, double *z);
 
+/* The first crossing in (a, h] of g along a Taylor step: the state is the
+ * polynomial z_i(u) = sum_k coef[i (p+1) + k] u^k at u = dir tau (tau in
+ * [0, h], dir = +-1 the direction of integration), and state(z, tau, arg)
+ * evaluates it.  The roots are isolated on g's own Taylor series along the
+ * step (g composed with the polynomial by the tape's Taylor mode, as
+ * heyoka does): Descartes' rule of signs on (0, 1) after a Moebius map,
+ * bisecting while it counts two or more, so that crossings close together
+ * are not missed; each isolated root of the right direction is then
+ * narrowed on g of the state as hl_event_first.  As hl_event_first
+ * otherwise (ga = g at a). */
+int hl_event_first_taylor(hl_event *ev, const double *coef, int p, double dir, double h,
+                          hl_event_state_fn state, void *arg, double a, double ga, double *tau,
+                          double *z);
+
 /* The cubic Hermite interpolant of a step of length dt from (z0, f0 = the
  * vector field at z0) to (z1, f1): the first crossing in (a, dt], as
  * hl_event_first (ga = g at a: g(z0) for a = 0; the state at tau = dt is

@@ -3,6 +3,7 @@
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "base/buf.h"
 #include "hamlie/event.h"
@@ -11,6 +12,8 @@ struct hl_event {
     hl_tape *g;
     int n;
     hl_event_dir dir;
+    double *buf; /* hl_event_first_taylor's scratch: 4 cap */
+    int cap;
 };
 
 hl_status hl_event_new(hl_event **out, hl_tape *g, hl_event_dir dir, hl_error *err)
@@ -32,6 +35,8 @@ hl_status hl_event_new(hl_event **out, hl_tape *g, hl_event_dir dir, hl_error *e
 
 void hl_event_free(hl_event *ev)
 {
+    if (ev != NULL)
+        free(ev->buf);
     free(ev);
 }
 
@@ -145,4 +150,98 @@ int hl_event_hermite(hl_event *ev, const double *z0, const double *f0, const dou
 {
     hermite h = {z0, f0, z1, f1, dt, ev->n};
     return hl_event_first(ev, hermite_state, &h, a, dt, ga, tau, z);
+}
+
+/* ---- the Taylor integrator: roots isolated on g's own series -------------- */
+
+/* The isolation bisects at most this deep: two crossings closer than
+ * 2^-ISOLATE_DEPTH of a step are the only ones that can still be missed. */
+#define ISOLATE_DEPTH 40
+
+/* c[0..p] := the coefficients of P(l + w x) from those of P(x). */
+static void shift_scale(double *c, int p, double l, double w)
+{
+    if (l != 0)
+        for (int i = 0; i < p; i++) /* Taylor shift by l (Horner's scheme, repeated) */
+            for (int k = p - 1; k >= i; k--)
+                c[k] += l * c[k + 1];
+    double wk = 1;
+    for (int k = 0; k <= p; k++, wk *= w)
+        c[k] *= wk;
+}
+
+/* An upper bound on the number of roots of Q (c[0..p]) in (0, 1) with the
+ * parity of that number: the sign changes of (1 + x)^p Q(1 / (1 + x))
+ * (Descartes' rule of signs after the Moebius map of (0, 1) onto (0, inf)).
+ * t: p + 1 scratch. */
+static int descartes01(const double *c, int p, double *t)
+{
+    for (int k = 0; k <= p; k++)
+        t[k] = c[p - k];
+    shift_scale(t, p, 1, 1);
+    int changes = 0, last = 0;
+    for (int k = 0; k <= p; k++) {
+        int s = (t[k] > 0) - (t[k] < 0);
+        if (s != 0 && last != 0 && s != last)
+            changes++;
+        if (s != 0)
+            last = s;
+    }
+    return changes;
+}
+
+typedef struct isolate {
+    hl_event *ev;
+    hl_event_state_fn state;
+    void *arg;
+    const double *P; /* g's series in sigma = tau / h over the step: p + 1 */
+    int p;
+    double h, *c, *t;
+    double *z;
+} isolate;
+
+/* The first crossing in (l, r] (in units of the step; gl, gr: g at l h and
+ * r h), by bisection while Descartes' count is 2 or more; 1 with *tau. */
+static int isolate_first(isolate *s, double l, double r, double gl, double gr, int depth,
+                         double *tau)
+{
+    memcpy(s->c, s->P, (size_t)(s->p + 1) * sizeof *s->c);
+    shift_scale(s->c, s->p, l, r - l);
+    int v = descartes01(s->c, s->p, s->t);
+    /* g = 0 exactly at l (just after a crossing): the side g goes to from
+     * there, by the first non-zero derivative, so that a second crossing
+     * right after it counts */
+    for (int k = 1; gl == 0 && k <= s->p; k++)
+        gl = s->c[k];
+    /* the rule counts roots inside (0, 1): a root at r shows in gr */
+    if (v == 0 && !hl_event_crosses(s->ev, gl, gr))
+        return 0;
+    if (v <= 1 || depth >= ISOLATE_DEPTH) {
+        if (!hl_event_crosses(s->ev, gl, gr))
+            return 0; /* one root going the other way, or none after all */
+        *tau = narrow(s->ev, s->state, s->arg, l * s->h, r * s->h, gl, gr, s->z);
+        return 1;
+    }
+    double m = l + (r - l) / 2;
+    double gm = g_at(s->ev, s->state, s->arg, m * s->h, s->z);
+    return isolate_first(s, l, m, gl, gm, depth + 1, tau) ||
+           isolate_first(s, m, r, gm, gr, depth + 1, tau);
+}
+
+int hl_event_first_taylor(hl_event *ev, const double *coef, int p, double dir, double h,
+                          hl_event_state_fn state, void *arg, double a, double ga, double *tau,
+                          double *z)
+{
+    if (ev->cap < p + 1) {
+        ev->cap = p + 1;
+        ev->buf = hl_xrealloc(ev->buf, 4 * (size_t)ev->cap * sizeof *ev->buf);
+    }
+    double *G = ev->buf, *P = G + ev->cap;
+    hl_tape_taylor_d(G, coef, p, ev->g);
+    double hk = 1;
+    for (int k = 0; k <= p; k++, hk *= dir * h)
+        P[k] = G[k] * hk;
+    isolate s = {ev, state, arg, P, p, h, P + ev->cap, P + 2 * ev->cap, z};
+    double gb = g_at(ev, state, arg, h, z);
+    return isolate_first(&s, a / h, 1, ga, gb, 0, tau);
 }
