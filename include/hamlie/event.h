@@ -69,6 +69,12 @@ typedef void (*hl_event_state_fn)(double *z, double tau, void *arg);
 int hl_event_first(hl_event *ev, hl_event_state_fn state, void *arg, double a, double b, double ga,
                    double *tau, double *z);
 
+/* Declare g affine, g(z) = g0 + grad . z (n values, copied), as the caller
+ * knows from its formula (a section q_j = c): hl_event_first_taylor then
+ * takes g's series along a step from the state's directly, without a
+ * Taylor-mode pass over the tape (most of the cost of a cheap surface). */
+void hl_event_set_affine(hl_event *ev, const double *grad, double g0);
+
 /* The first crossing in (a, h] of g along a Taylor step: the state is the
  * polynomial z_i(u) = sum_k coef[i (p+1) + k] u^k at u = dir tau (tau in
  * [0, h], dir = +-1 the direction of integration), and state(z, tau, arg)
