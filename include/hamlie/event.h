@@ -10,11 +10,12 @@
  * and a crossing that lands exactly at a step's end is counted once.
  *
  * Location.  Between two states known at times 0 and h, the state is a
- * continuous function of tau (an interpolant); g along it is sampled at
- * HL_EVENT_SAMPLES equal sub-intervals (NOTE: two crossings closer than
- * h / HL_EVENT_SAMPLES in one interval cancel and are missed; the Taylor
- * integrator's steps are short against the periods of an orbit), and a sign
- * change is narrowed by the Illinois variant of false position, with a
+ * continuous function of tau (an interpolant).  On a Taylor step the roots
+ * of g are isolated on g's own series along the step
+ * (hl_event_first_taylor), so that crossings close together are found; on
+ * other interpolants g is sampled at HL_EVENT_SAMPLES equal sub-intervals
+ * (NOTE: there two crossings closer than h / HL_EVENT_SAMPLES cancel and
+ * are missed).  A sign change is narrowed by the Illinois variant of false position, with a
  * bisection whenever false position stalls, until the bracket is one
  * rounding of tau wide or g is exactly 0: the crossing is located to
  * round-off ON THE INTERPOLANT.  The interpolants:
