@@ -80,7 +80,8 @@ static void event_clear(hl_run *r)
 static void declare_affine(hl_event *ev, hl_tape *tape, const hl_expr *g, hl_run *r)
 {
     int n2 = 2 * r->N;
-    double *grad = hl_xmalloc((size_t)n2 * sizeof *grad), *zero = hl_xcalloc((size_t)n2, sizeof *zero);
+    double *grad = hl_xmalloc((size_t)n2 * sizeof *grad),
+           *zero = hl_xcalloc((size_t)n2, sizeof *zero);
     int affine = 1;
     for (int i = 0; i < n2 && affine; i++) {
         const hl_expr *d = hl_expr_diff(hl_system_pool(r->sys), g, r->names[i]);
