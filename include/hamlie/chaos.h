@@ -70,6 +70,14 @@ hl_status hl_chaos_run(hl_chaos *chaos, const double *z0, const double *delta0, 
                        double every, hl_chaos_fn fn, void *arg, hl_chaos_result *res,
                        hl_error *err);
 
+/* fn(t, t_end, arg) (error.h's hl_progress_fn) is called between two
+ * chunks of a run (about once per e-fold of |delta|, at most every 64 time
+ * units): a non-zero return stops the run with HL_ESTOP ("interrupted at
+ * t = .."), res holding the indicators there.  Chunks restart the
+ * integrator anyway, so the callback changes no bit of the results.  NULL
+ * (the default): none. */
+void hl_chaos_set_progress(hl_chaos *chaos, hl_progress_fn fn, void *arg);
+
 #ifdef __cplusplus
 }
 #endif

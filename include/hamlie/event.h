@@ -10,11 +10,12 @@
  * and a crossing that lands exactly at a step's end is counted once.
  *
  * Location.  Between two states known at times 0 and h, the state is a
- * continuous function of tau (an interpolant); g along it is sampled at
- * HL_EVENT_SAMPLES equal sub-intervals (NOTE: two crossings closer than
- * h / HL_EVENT_SAMPLES in one interval cancel and are missed; the Taylor
- * integrator's steps are short against the periods of an orbit), and a sign
- * change is narrowed by the Illinois variant of false position, with a
+ * continuous function of tau (an interpolant).  On a Taylor step the roots
+ * of g are isolated on g's own series along the step
+ * (hl_event_first_taylor), so that crossings close together are found; on
+ * other interpolants g is sampled at HL_EVENT_SAMPLES equal sub-intervals
+ * (NOTE: there two crossings closer than h / HL_EVENT_SAMPLES cancel and
+ * are missed).  A sign change is narrowed by the Illinois variant of false position, with a
  * bisection whenever false position stalls, until the bracket is one
  * rounding of tau wide or g is exactly 0: the crossing is located to
  * round-off ON THE INTERPOLANT.  The interpolants:
@@ -68,6 +69,26 @@ typedef void (*hl_event_state_fn)(double *z, double tau, void *arg);
  * crossing goes to: g(z) >= 0 going up), 0 if there is none. */
 int hl_event_first(hl_event *ev, hl_event_state_fn state, void *arg, double a, double b, double ga,
                    double *tau, double *z);
+
+/* Declare g affine, g(z) = g0 + grad . z (n values, copied), as the caller
+ * knows from its formula (a section q_j = c): hl_event_first_taylor then
+ * takes g's series along a step from the state's directly, without a
+ * Taylor-mode pass over the tape (most of the cost of a cheap surface). */
+void hl_event_set_affine(hl_event *ev, const double *grad, double g0);
+
+/* The first crossing in (a, h] of g along a Taylor step: the state is the
+ * polynomial z_i(u) = sum_k coef[i (p+1) + k] u^k at u = dir tau (tau in
+ * [0, h], dir = +-1 the direction of integration), and state(z, tau, arg)
+ * evaluates it.  The roots are isolated on g's own Taylor series along the
+ * step (g composed with the polynomial by the tape's Taylor mode, as
+ * heyoka does): Descartes' rule of signs on (0, 1) after a Moebius map,
+ * bisecting while it counts two or more, so that crossings close together
+ * are not missed; each isolated root of the right direction is then
+ * narrowed on g of the state as hl_event_first.  As hl_event_first
+ * otherwise (ga = g at a). */
+int hl_event_first_taylor(hl_event *ev, const double *coef, int p, double dir, double h,
+                          hl_event_state_fn state, void *arg, double a, double ga, double *tau,
+                          double *z);
 
 /* The cubic Hermite interpolant of a step of length dt from (z0, f0 = the
  * vector field at z0) to (z1, f1): the first crossing in (a, dt], as

@@ -29,6 +29,18 @@ hl_status hl_section_plot_write(const char *dir, const char *formats, const char
                                 const size_t *counts, const double *const *xs,
                                 const double *const *ys, hl_error *err);
 
+/* The orbits in classes instead of a colour each (a chaos indicator's
+ * regular / chaotic): orbit i belongs to class cls[i] (0 .. nclasses-1;
+ * any other value: not drawn), class c is drawn in colors[c] with the
+ * legend entry labels[c] (NULL: none), classes in order (the last on top).
+ * Writes DIR/section.<format> as hl_section_plot_write. */
+hl_status hl_section_plot_classes_write(const char *dir, const char *formats, const char *title,
+                                        const char *xlabel, const char *ylabel, int norbits,
+                                        const size_t *counts, const double *const *xs,
+                                        const double *const *ys, const int *cls, int nclasses,
+                                        const hl_color *colors, const char *const *labels,
+                                        hl_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -20,6 +20,8 @@ struct hl_chaos {
     int n; /* 2N */
     double tol;
     hl_tape *full, *first; /* with b, and without (the first chunk) */
+    hl_progress_fn progress;
+    void *progress_arg;
 };
 
 /* Gauss-Legendre nodes per panel of the first chunk. */
@@ -47,6 +49,12 @@ hl_status hl_chaos_new(hl_chaos **out, hl_system *sys, double tol, hl_error *err
     }
     *out = c;
     return HL_OK;
+}
+
+void hl_chaos_set_progress(hl_chaos *chaos, hl_progress_fn fn, void *arg)
+{
+    chaos->progress = fn;
+    chaos->progress_arg = arg;
 }
 
 void hl_chaos_free(hl_chaos *chaos)
@@ -264,6 +272,10 @@ hl_status hl_chaos_run(hl_chaos *c, const double *z0, const double *delta0, doub
                 break;
             }
             next_out = next_output(++k, every, t_end);
+        }
+        if (c->progress != NULL && c->progress(s.t, t_end, c->progress_arg) != 0) {
+            st = hl_error_set(err, HL_ESTOP, NULL, -1, 0, "interrupted at t = %g", s.t);
+            break;
         }
         double t1 = s.t + h < next_out ? s.t + h : next_out;
         long before = hl_flow_nsteps(flow);

@@ -38,10 +38,14 @@ const char cmd_chaos_help[] =
     "                       fli, mlce, then the state\n"
     "  --pairs, --param     as for every command\n"
     "  --json               print the final indicators as JSON (not with --every)\n"
+    "  --progress, --quiet  progress (time reached) on stderr from the start, or\n"
+    "                       none (default: after a second or two)\n"
     "  -h, --help           show this help\n"
     "\n"
+    "Ctrl-C (SIGINT) stops the run between two renormalisations: with --every the\n"
+    "rows done are written, whole; without, nothing is printed.\n"
     "Exit status: 0 computed; 2 usage or input error, or the run failed (a\n"
-    "blow-up: the error says at what time).\n"
+    "blow-up: the error says at what time); 130 interrupted.\n"
     "Example: hamlie chaos -H '(px^2+py^2)/2 + (x^2+y^2)/2 + x^2*y - y^3/3' \\\n"
     "           --init x=0,y=-0.1,px=0.56803755858823,py=0 --t 1e3\n";
 
@@ -177,6 +181,17 @@ static int read_point(double *z, hl_system *sys, const char *text, const char *o
     return cli_fail(&err);
 }
 
+/* Ctrl-C: the rows done (whole) with --every, else nothing; exit 130. */
+static int interrupted(hl_buf *out, const chaos_opts *c, const hl_chaos_result *r)
+{
+    int rc = CLI_INTERRUPTED;
+    if (c->every > 0)
+        rc = cli_emit(out, CLI_INTERRUPTED);
+    fprintf(stderr, "hamlie chaos: interrupted at t = %.17g of %.17g%s\n", r->t, c->t,
+            c->every > 0 ? "; the rows before written" : "; nothing printed");
+    return rc;
+}
+
 static int compute(hl_system *sys, const cli_opts *o, const chaos_opts *c, const double *z0,
                    const double *d0)
 {
@@ -190,9 +205,18 @@ static int compute(hl_system *sys, const cli_opts *o, const chaos_opts *c, const
     int rc;
     if (c->every > 0)
         csv_header(&out, sys);
-    if (hl_chaos_new(&ch, sys, c->tol, &err) != HL_OK ||
-        hl_chaos_run(ch, z0, d0, c->t, c->every, c->every > 0 ? csv_row : NULL, &sink, &r, &err) !=
-            HL_OK) {
+    cli_progress p;
+    cli_progress_begin(&p, "chaos", "time", o->progress);
+    hl_status st = hl_chaos_new(&ch, sys, c->tol, &err);
+    if (st == HL_OK) {
+        hl_chaos_set_progress(ch, cli_progress_fn, &p);
+        st = hl_chaos_run(ch, z0, d0, c->t, c->every, c->every > 0 ? csv_row : NULL, &sink, &r,
+                          &err);
+    }
+    cli_progress_end(&p);
+    if (st == HL_ESTOP) {
+        rc = interrupted(&out, c, &r);
+    } else if (st != HL_OK) {
         rc = cli_fail(&err);
     } else {
         if (c->every > 0)
@@ -216,8 +240,8 @@ int cmd_chaos(int argc, char **argv, const cli_command *self)
     memset(&o, 0, sizeof o);
     static const cli_own own[] = {
         {"--init", 0}, {"--t", 0}, {"--tol", 0}, {"--every", 0}, {"--delta", 0}};
-    static const cli_begin_spec spec = {
-        own, (int)(sizeof own / sizeof own[0]), found_opt, check_opts, CLI_OPT_H, 64};
+    static const cli_begin_spec spec = {own,        (int)(sizeof own / sizeof own[0]), found_opt,
+                                        check_opts, CLI_OPT_H | CLI_OPT_PROGRESS,      64};
     char **av;
     hl_system *sys;
     int rc = cli_begin(&av, &o, &sys, argc, argv, self, &spec, &c);

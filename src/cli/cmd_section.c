@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "cli/crossings.h"
+#include "cli/section_orbits.h"
 #include "hamlie/section.h"
 #include "hamlie/sectionplot.h"
 
@@ -43,21 +44,37 @@ const char cmd_section_help[] =
     "                       colour per orbit, in the plane of the other coordinate\n"
     "                       and its momentum\n"
     "  --format png,svg,pdf the figure's formats (default png)\n"
+    "  --chaos              also the chaos indicator of every orbit: MEGNO <Y>\n"
+    "                       (as `hamlie chaos`, the Taylor integrator at --tol)\n"
+    "                       from its seed over its time span (to its last\n"
+    "                       crossing); chaotic when <Y> > 2.5 (regular orbits\n"
+    "                       tend to 2, or less, chaotic ones grow like lambda t/2;\n"
+    "                       reliable for spans of 1000 or more).  The CSV gains\n"
+    "                       the columns mean_Y and chaotic (1/0), the figure\n"
+    "                       two colours (blue regular, red chaotic), the summary\n"
+    "                       the fraction of chaotic orbits\n"
+    "  --threads N          orbits on N threads (default: every core); the output\n"
+    "                       is the same with any N\n"
+    "  --progress, --quiet  progress (orbits done) on stderr from the start, or\n"
+    "                       none (default: after a second or two)\n"
     "  --pairs, --param, --json   as for every command\n"
     "\n"
     "An orbit that fails (a blow-up, fewer than N crossings by --t-max) is named\n"
-    "on stderr, its crossings kept, and the others go on.\n"
+    "on stderr, its crossings kept, and the others go on.  Ctrl-C (SIGINT) stops\n"
+    "the orbits: those finished are written, whole, the others left out.\n"
     "Exit status: 0 every orbit done; 1 some orbit failed (the file is written);\n"
     "2 usage or input error (no allowed region, a point where H = E has no\n"
-    "solution), or every orbit failed.\n"
+    "solution), or every orbit failed; 130 interrupted.\n"
     "Example: hamlie section -H '(px^2+py^2)/2 + (x^2+y^2)/2 + x^2*y - y^3/3' \\\n"
     "           --energy 1/8 --surface x=0 --orbits 20 --crossings 300 --plot out/\n";
 
 typedef struct sec_opts {
     const char *energy, *surface, *direction, *orbits_s, *init_file, *crossings_s;
     const char *scheme, *tol_s, *dt_s, *tmax_s, *out, *plot, *formats;
+    const char *threads_s;
+    int chaos;
     hl_event_dir dir;
-    long orbits, ncross;
+    long orbits, ncross, threads;
     double tol, dt, t_max;
 } sec_opts;
 
@@ -66,8 +83,11 @@ static void found_opt(void *arg, int k, const char *value)
     sec_opts *s = arg;
     const char **slot[] = {&s->energy,      &s->surface, &s->direction, &s->orbits_s, &s->init_file,
                            &s->crossings_s, &s->scheme,  &s->tol_s,     &s->dt_s,     &s->tmax_s,
-                           &s->out,         &s->plot,    &s->formats};
-    *slot[k] = value;
+                           &s->out,         &s->plot,    &s->formats,   &s->threads_s};
+    if (k == 14)
+        s->chaos = 1;
+    else
+        *slot[k] = value;
 }
 
 static int read_long(long *v, const char *s, const char *opt, long lo, long hi,
@@ -130,6 +150,9 @@ static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
         return rc;
     if (s->formats != NULL && s->plot == NULL)
         return cli_usage(cmd, "--format is for the figure of --plot DIR");
+    s->threads = section_cores();
+    if (s->threads_s && (rc = read_long(&s->threads, s->threads_s, "--threads", 1, 1024, cmd)) >= 0)
+        return rc;
     return -1;
 }
 
@@ -198,43 +221,99 @@ static int fail_in_file(hl_error *err, const char *path, const char *text)
 
 typedef struct job {
     crossings table;
-    long orbit;
     double max_dH, E;
+    section_orbit *orbits; /* each orbit's results (their crossings gathered in table) */
+    int M, failed, done;
+    int classified, chaotic, short_spans; /* with --chaos */
 } job;
 
-static int keep(const hl_run_crossing *c, void *arg)
+/* The orbits' results in orbit order: crossings into j->table, the
+ * failures named on stderr (in that order too: nothing depends on the
+ * threads), the classes counted. */
+static void gather(job *j)
 {
-    job *j = arg;
-    crossings_add(&j->table, j->orbit, c);
-    j->max_dH = fmax(j->max_dH, fabs(c->H - j->E));
-    return 0;
-}
-
-/* Every orbit; the failures named on stderr.  Returns how many failed. */
-static int run_orbits(job *j, hl_section *sec, hl_run *run, const double *zs, int M,
-                      const sec_opts *s, int n2)
-{
-    hl_section_opts opts = {adaptive(s) ? s->tol : 0, s->dt, s->t_max};
-    int failed = 0;
-    for (int i = 0; i < M; i++) {
-        hl_error err;
-        hl_error_clear(&err);
-        j->orbit = i;
-        long before = j->table.n;
-        if (hl_section_orbit(sec, run, zs + (size_t)i * n2, s->ncross, &opts, keep, j, NULL,
-                             &err) != HL_OK) {
+    for (int i = 0; i < j->M; i++) {
+        const section_orbit *r = &j->orbits[i];
+        if (!r->done)
+            continue; /* cut by an interrupt */
+        j->done++;
+        if (r->failed) {
             fprintf(stderr, "hamlie section: orbit %d failed after %ld crossings: %s\n", i,
-                    j->table.n - before, err.msg);
-            failed++;
+                    r->table.n, r->why);
+            j->failed++;
+        }
+        for (long k = 0; k < r->table.n; k++) {
+            const double *row = crossings_row(&r->table, k);
+            hl_run_crossing x = {(long)row[1], row[2], row + 3, row[3 + r->table.n2]};
+            crossings_add(&j->table, i, &x);
+        }
+        j->max_dH = fmax(j->max_dH, r->max_dH);
+        if (r->chaotic >= 0) {
+            j->classified++;
+            j->chaotic += r->chaotic;
+            j->short_spans += r->span < SECTION_CHAOS_MIN_SPAN;
         }
     }
-    return failed;
+}
+
+/* Every orbit, on the threads.  CLI_OK, CLI_INTERRUPTED or CLI_ERROR. */
+static int run_orbits(job *j, const double *zs, const sec_opts *s, const cli_opts *o, int n2)
+{
+    section_job sj = {o,
+                      s->surface,
+                      s->dir,
+                      j->E,
+                      adaptive(s) ? NULL : s->scheme,
+                      {adaptive(s) ? s->tol : 0, s->dt, s->t_max},
+                      s->ncross,
+                      s->chaos,
+                      s->tol,
+                      zs,
+                      j->M,
+                      n2};
+    cli_progress p;
+    cli_progress_begin(&p, "section", "orbit", o->progress);
+    if (o->progress == CLI_PROGRESS_ON)
+        cli_progress_say(&p, "%d orbits of %ld crossings on %ld thread%s%s", j->M, s->ncross,
+                         s->threads, s->threads > 1 ? "s" : "", s->chaos ? ", with MEGNO" : "");
+    int rc = section_orbits_run(&sj, j->orbits, (int)s->threads, &p);
+    cli_progress_end(&p);
+    if (rc != CLI_ERROR)
+        gather(j);
+    return rc;
+}
+
+/* ---- the figure --------------------------------------------------------------- */
+
+/* The classes of the figure with --chaos, drawn in this order. */
+enum { CLASS_CHAOTIC, CLASS_REGULAR, CLASS_UNKNOWN, NCLASSES };
+
+static hl_status draw_classes(const job *j, const char *title, const char *xl, const char *yl,
+                              const size_t *counts, double **xs, double **ys, const sec_opts *s,
+                              hl_error *err)
+{
+    int *cls = hl_xmalloc((size_t)j->M * sizeof *cls);
+    for (int i = 0; i < j->M; i++)
+        cls[i] = j->orbits[i].chaotic == 1   ? CLASS_CHAOTIC
+                 : j->orbits[i].chaotic == 0 ? CLASS_REGULAR
+                                             : CLASS_UNKNOWN;
+    static const hl_color colors[NCLASSES] = {HL_COLOR_RED, HL_COLOR_BLUE, HL_COLOR_GRAY};
+    char lab[NCLASSES][80];
+    snprintf(lab[0], sizeof lab[0], "chaotic, <Y> > %g: %d", SECTION_CHAOS_THRESHOLD, j->chaotic);
+    snprintf(lab[1], sizeof lab[1], "regular: %d", j->classified - j->chaotic);
+    snprintf(lab[2], sizeof lab[2], "not classified: %d", j->done - j->classified);
+    const char *labels[NCLASSES] = {lab[0], lab[1], j->done > j->classified ? lab[2] : NULL};
+    hl_status st = hl_section_plot_classes_write(
+        s->plot, s->formats ? s->formats : "png", title, xl, yl, j->M, counts,
+        (const double *const *)xs, (const double *const *)ys, cls, NCLASSES, colors, labels, err);
+    free(cls);
+    return st;
 }
 
 /* The figure: the other coordinate against its momentum. */
-static int draw(const job *j, hl_system *sys, hl_section *sec, const sec_opts *s, int M)
+static int draw(const job *j, hl_system *sys, hl_section *sec, const sec_opts *s)
 {
-    int N = hl_system_ndof(sys), o = hl_section_coord(sec) == 0 ? (N > 1 ? 1 : 0) : 0;
+    int M = j->M, N = hl_system_ndof(sys), o = hl_section_coord(sec) == 0 ? (N > 1 ? 1 : 0) : 0;
     size_t *counts = hl_xcalloc((size_t)M, sizeof *counts);
     double **xs = hl_xcalloc((size_t)M, sizeof *xs), **ys = hl_xcalloc((size_t)M, sizeof *ys);
     for (long k = 0; k < j->table.n; k++) {
@@ -250,17 +329,39 @@ static int draw(const job *j, hl_system *sys, hl_section *sec, const sec_opts *s
              s->energy, s->surface, crossings_direction_name(s->dir));
     hl_error err;
     hl_error_clear(&err);
-    int st = hl_section_plot_write(s->plot, s->formats ? s->formats : "png", title,
-                                   hl_system_coord(sys, o), hl_system_momentum(sys, o), M, counts,
-                                   (const double *const *)xs, (const double *const *)ys, &err);
+    const char *xl = hl_system_coord(sys, o), *yl = hl_system_momentum(sys, o);
+    hl_status st = s->chaos ? draw_classes(j, title, xl, yl, counts, xs, ys, s, &err)
+                            : hl_section_plot_write(s->plot, s->formats ? s->formats : "png", title,
+                                                    xl, yl, M, counts, (const double *const *)xs,
+                                                    (const double *const *)ys, &err);
     for (int i = 0; i < M; i++)
         free(xs[i]), free(ys[i]);
     free(xs), free(ys), free(counts);
     return st == HL_OK ? CLI_OK : cli_fail(&err);
 }
 
+/* ---- the outputs -------------------------------------------------------------- */
+
+static double chaotic_fraction(const job *j)
+{
+    return j->classified > 0 ? (double)j->chaotic / j->classified : NAN;
+}
+
+static void put_json_chaos(hl_json *js, const job *j)
+{
+    hl_json_key(js, "chaos");
+    hl_json_object_begin(js);
+    hl_json_kv_string(js, "indicator", "MEGNO <Y> at the time of the orbit's last crossing");
+    hl_json_kv_double(js, "threshold", SECTION_CHAOS_THRESHOLD);
+    hl_json_kv_int(js, "classified", j->classified);
+    hl_json_kv_int(js, "chaotic", j->chaotic);
+    hl_json_kv_double(js, "chaotic_fraction", chaotic_fraction(j));
+    hl_json_kv_int(js, "spans_below_1000", j->short_spans);
+    hl_json_object_end(js);
+}
+
 static void put_json(hl_buf *out, hl_system *sys, const sec_opts *s, const cli_opts *o,
-                     const job *j, int M, int failed, const double *zs)
+                     const job *j, const double *zs, int interrupted)
 {
     hl_json js;
     hl_json_init_buf(&js, out);
@@ -274,18 +375,30 @@ static void put_json(hl_buf *out, hl_system *sys, const sec_opts *s, const cli_o
     hl_json_kv_string(&js, "scheme", adaptive(s) ? "lie (adaptive Taylor)" : s->scheme);
     hl_json_kv_string(&js, "located_on", adaptive(s) ? "taylor-polynomial" : "hermite-cubic");
     hl_json_kv_double(&js, adaptive(s) ? "tol" : "dt", adaptive(s) ? s->tol : s->dt);
-    hl_json_kv_int(&js, "orbits", M);
+    hl_json_kv_int(&js, "orbits", j->M);
     hl_json_kv_int(&js, "crossings_per_orbit", s->ncross);
     hl_json_kv_int(&js, "crossings", j->table.n);
-    hl_json_kv_int(&js, "failed_orbits", failed);
+    hl_json_kv_int(&js, "failed_orbits", j->failed);
+    hl_json_kv_bool(&js, "interrupted", interrupted);
+    hl_json_kv_int(&js, "orbits_done", j->done);
     hl_json_kv_double(&js, "max_abs_H_minus_E", j->max_dH);
+    if (s->chaos)
+        put_json_chaos(&js, j);
     hl_json_key(&js, "seeds");
     hl_json_array_begin(&js);
     int n2 = 2 * hl_system_ndof(sys);
-    for (int i = 0; i < M; i++) {
+    for (int i = 0; i < j->M; i++) {
         hl_json_object_begin(&js);
         for (int v = 0; v < n2; v++)
             hl_json_kv_double(&js, cli_phase_name(sys, v), zs[(size_t)i * n2 + v]);
+        if (s->chaos) {
+            const section_orbit *r = &j->orbits[i];
+            hl_json_kv_double(&js, "mean_Y", r->megno);
+            hl_json_kv_string(&js, "class",
+                              r->chaotic == 1   ? "chaotic"
+                              : r->chaotic == 0 ? "regular"
+                                                : "not classified");
+        }
         hl_json_object_end(&js);
     }
     hl_json_array_end(&js);
@@ -293,6 +406,29 @@ static void put_json(hl_buf *out, hl_system *sys, const sec_opts *s, const cli_o
     hl_json_kv_string(&js, "plot", s->plot);
     hl_json_object_end(&js);
     hl_json_finish(&js);
+}
+
+/* The crossings as CSV; with --chaos each row also carries its orbit's <Y>
+ * and class (section_orbits.c's writer). */
+static int write_csv(const job *j, hl_system *sys, const sec_opts *s, const char *path)
+{
+    if (!s->chaos)
+        return crossings_write_csv(&j->table, sys, path, 1);
+    return section_write_chaos_csv(&j->table, j->orbits, sys, path);
+}
+
+/* The summary line (text output). */
+static void put_summary(hl_buf *out, const job *j, const sec_opts *s)
+{
+    hl_buf_printf(out,
+                  "%d orbits, %ld crossings (%ld asked each), max |H - E| = %.3g at the "
+                  "crossings",
+                  j->done, j->table.n, s->ncross, j->max_dH);
+    if (s->chaos)
+        hl_buf_printf(out, "; chaotic by MEGNO (<Y> > %g): %d of %d orbits, fraction %.3f",
+                      SECTION_CHAOS_THRESHOLD, j->chaotic, j->classified, chaotic_fraction(j));
+    hl_buf_printf(out, "; wrote them to %s%s%s\n", s->out, s->plot ? "; figure in " : "",
+                  s->plot ? s->plot : "");
 }
 
 /* The seeds: spread, or read from --init-file.  CLI_OK or the exit code. */
@@ -317,6 +453,45 @@ static int seeds(double **zs, int *M, hl_section *sec, const sec_opts *s)
     return rc;
 }
 
+/* After an interrupt, what was written and what was not. */
+static void say_interrupted(const job *j, const sec_opts *s)
+{
+    fprintf(stderr, "hamlie section: interrupted: %d of %d orbits done%s\n", j->done, j->M,
+            j->done > 0 ? "; their crossings written, whole orbits only" : ", nothing written");
+}
+
+/* The outputs: figure, CSV, summary.  rc: the orbits' CLI_OK or
+ * CLI_INTERRUPTED.  Returns the exit code. */
+static int write_outputs(const job *j, hl_system *sys, hl_section *sec, const sec_opts *s,
+                         const cli_opts *o, const double *zs, int rc)
+{
+    int interrupted = rc == CLI_INTERRUPTED;
+    if (s->plot != NULL && (rc = draw(j, sys, sec, s)) != CLI_OK)
+        return rc;
+    int to_stdout = s->out == NULL && o->format != CLI_JSON;
+    if (s->out != NULL || to_stdout)
+        rc = write_csv(j, sys, s, s->out != NULL ? s->out : "-");
+    if (rc == CLI_OK && !to_stdout) {
+        hl_buf out;
+        hl_buf_init(&out);
+        if (o->format == CLI_JSON)
+            put_json(&out, sys, s, o, j, zs, interrupted);
+        else
+            put_summary(&out, j, s);
+        rc = cli_emit(&out, CLI_OK);
+    }
+    if (rc == CLI_OK && s->chaos && j->short_spans > 0)
+        fprintf(stderr,
+                "hamlie section: note: %d orbits end before t = %g, too soon for <Y> to "
+                "separate regular from chaotic reliably (more --crossings)\n",
+                j->short_spans, SECTION_CHAOS_MIN_SPAN);
+    if (rc == CLI_OK && interrupted) {
+        say_interrupted(j, s);
+        return CLI_INTERRUPTED;
+    }
+    return rc == CLI_OK && j->failed > 0 ? CLI_FAILS : rc;
+}
+
 static int section_body(hl_system *sys, sec_opts *s, const cli_opts *o)
 {
     hl_error err;
@@ -324,55 +499,35 @@ static int section_body(hl_system *sys, sec_opts *s, const cli_opts *o)
     job j;
     memset(&j, 0, sizeof j);
     hl_section *sec = NULL;
-    hl_scheme *sch = NULL;
-    hl_run *run = NULL;
     double *zs = NULL;
-    int M = 0, rc = CLI_OK, n2 = 2 * hl_system_ndof(sys);
+    int rc = CLI_OK, n2 = 2 * hl_system_ndof(sys);
     if (read_energy(&j.E, sys, s->energy, &err) != HL_OK ||
         hl_section_new(&sec, sys, s->surface, s->dir, j.E, &err) != HL_OK) {
         if (err.src == s->surface)
             hl_error_prefix(&err, "in --surface");
         return cli_fail(&err);
     }
-    if ((rc = seeds(&zs, &M, sec, s)) != CLI_OK)
+    if ((rc = seeds(&zs, &j.M, sec, s)) != CLI_OK)
         goto done;
-    if ((!adaptive(s) && cli_make_scheme(&sch, NULL, NULL, s->scheme, 4, sys, &err) != HL_OK) ||
-        hl_run_new(&run, sys, sch, &err) != HL_OK) {
-        rc = cli_fail(&err);
+    crossings_init(&j.table, n2);
+    j.orbits = hl_xcalloc((size_t)j.M, sizeof *j.orbits);
+    if ((rc = run_orbits(&j, zs, s, o, n2)) == CLI_ERROR)
+        goto done;
+    if (rc == CLI_INTERRUPTED && j.done == 0) { /* nothing to write */
+        say_interrupted(&j, s);
         goto done;
     }
-    crossings_init(&j.table, n2);
-    int failed = run_orbits(&j, sec, run, zs, M, s, n2);
-    if (failed == M && j.table.n == 0) {
+    if (j.done > 0 && j.failed == j.done && j.table.n == 0) {
         fprintf(stderr, "hamlie section: error: no orbit crossed the section\n");
         rc = CLI_ERROR;
         goto done;
     }
-    if (s->plot != NULL && (rc = draw(&j, sys, sec, s, M)) != CLI_OK)
-        goto done;
-    int to_stdout = s->out == NULL && o->format != CLI_JSON;
-    if (s->out != NULL || to_stdout)
-        rc = crossings_write_csv(&j.table, sys, s->out != NULL ? s->out : "-", 1);
-    if (rc == CLI_OK && !to_stdout) {
-        hl_buf out;
-        hl_buf_init(&out);
-        if (o->format == CLI_JSON)
-            put_json(&out, sys, s, o, &j, M, failed, zs);
-        else
-            hl_buf_printf(&out,
-                          "%d orbits, %ld crossings (%ld asked each), max |H - E| = %.3g at "
-                          "the crossings; wrote them to %s%s%s\n",
-                          M, j.table.n, s->ncross, j.max_dH, s->out, s->plot ? "; figure in " : "",
-                          s->plot ? s->plot : "");
-        rc = cli_emit(&out, CLI_OK);
-    }
-    if (rc == CLI_OK && failed > 0)
-        rc = CLI_FAILS;
+    rc = write_outputs(&j, sys, sec, s, o, zs, rc);
 done:
+    section_orbits_free(j.orbits, j.M);
+    free(j.orbits);
     crossings_clear(&j.table);
     free(zs);
-    hl_run_free(run);
-    hl_scheme_free(sch);
     hl_section_free(sec);
     return rc;
 }
@@ -387,9 +542,9 @@ int cmd_section(int argc, char **argv, const cli_command *cmd)
                                   {"--orbits", 0}, {"--init-file", 0}, {"--crossings", 0},
                                   {"--scheme", 0}, {"--tol", 0},       {"--dt", 0},
                                   {"--t-max", 0},  {"--out", 0},       {"--plot", 0},
-                                  {"--format", 0}};
-    static const cli_begin_spec spec = {
-        own, (int)(sizeof own / sizeof own[0]), found_opt, check_opts, CLI_OPT_H, 64};
+                                  {"--format", 0}, {"--threads", 0},   {"--chaos", CLI_OWN_FLAG}};
+    static const cli_begin_spec spec = {own,        (int)(sizeof own / sizeof own[0]), found_opt,
+                                        check_opts, CLI_OPT_H | CLI_OPT_PROGRESS,      64};
     char **av;
     hl_system *sys = NULL;
     int rc = cli_begin(&av, &o, &sys, argc, argv, cmd, &spec, &s);

@@ -282,7 +282,8 @@ static int step_outputs(hl_flow *fl, int *j, double *thi, double *tlo, double *z
     on_step o = {fl, dir};
     double ta = 0, ga = fl->ev != NULL ? hl_event_value(fl->ev, z) : 0, tc = h;
     for (;;) {
-        int hit = fl->ev != NULL && hl_event_first(fl->ev, step_state, &o, ta, h, ga, &tc, fl->ze);
+        int hit = fl->ev != NULL && hl_event_first_taylor(fl->ev, fl->coef, fl->p, dir, h,
+                                                          step_state, &o, ta, ga, &tc, fl->ze);
         double lim = hit ? tc : h;
         int st;
         for (double tau; *j < nts && (tau = dir * ((ts[*j] - *thi) - *tlo)) <= lim; ++*j) {

@@ -69,14 +69,9 @@ hl_figure *hl_section_figure(const char *title, const char *xlabel, const char *
     return f;
 }
 
-hl_status hl_section_plot_write(const char *dir, const char *formats, const char *title,
-                                const char *xlabel, const char *ylabel, int norbits,
-                                const size_t *counts, const double *const *xs,
-                                const double *const *ys, hl_error *err)
+/* DIR/section.<formats>, f freed. */
+static hl_status write_figure(hl_figure *f, const char *dir, const char *formats, hl_error *err)
 {
-    hl_figure *f = hl_section_figure(title, xlabel, ylabel, norbits, counts, xs, ys, err);
-    if (f == NULL)
-        return err != NULL ? err->status : HL_EINVAL;
     int st = hl_figure_mkdir(dir, err);
     if (st == HL_OK) {
         size_t n = strlen(dir) + 16;
@@ -87,4 +82,60 @@ hl_status hl_section_plot_write(const char *dir, const char *formats, const char
     }
     hl_figure_free(f);
     return st;
+}
+
+hl_status hl_section_plot_write(const char *dir, const char *formats, const char *title,
+                                const char *xlabel, const char *ylabel, int norbits,
+                                const size_t *counts, const double *const *xs,
+                                const double *const *ys, hl_error *err)
+{
+    hl_figure *f = hl_section_figure(title, xlabel, ylabel, norbits, counts, xs, ys, err);
+    if (f == NULL)
+        return err != NULL ? err->status : HL_EINVAL;
+    return write_figure(f, dir, formats, err);
+}
+
+/* The points of the orbits of class c, end to end. */
+static size_t class_points(double **x, double **y, int norbits, const size_t *counts,
+                           const double *const *xs, const double *const *ys, const int *cls, int c)
+{
+    size_t n = 0;
+    for (int i = 0; i < norbits; i++)
+        n += cls[i] == c ? counts[i] : 0;
+    *x = hl_xmalloc((n ? n : 1) * sizeof **x);
+    *y = hl_xmalloc((n ? n : 1) * sizeof **y);
+    size_t m = 0;
+    for (int i = 0; i < norbits; i++)
+        if (cls[i] == c && counts[i] > 0) {
+            memcpy(*x + m, xs[i], counts[i] * sizeof **x);
+            memcpy(*y + m, ys[i], counts[i] * sizeof **y);
+            m += counts[i];
+        }
+    return n;
+}
+
+hl_status hl_section_plot_classes_write(const char *dir, const char *formats, const char *title,
+                                        const char *xlabel, const char *ylabel, int norbits,
+                                        const size_t *counts, const double *const *xs,
+                                        const double *const *ys, const int *cls, int nclasses,
+                                        const hl_color *colors, const char *const *labels,
+                                        hl_error *err)
+{
+    hl_figure *f = hl_figure_new(title, xlabel, ylabel);
+    hl_figure_set_equal_aspect(f, 1);
+    robust_clip(f, 0, norbits, counts, xs);
+    robust_clip(f, 1, norbits, counts, ys);
+    hl_figure_set_legend(f, HL_LEGEND_TOP_RIGHT);
+    hl_status st = HL_OK;
+    for (int c = 0; c < nclasses && st == HL_OK; c++) {
+        double *x, *y;
+        size_t n = class_points(&x, &y, norbits, counts, xs, ys, cls, c);
+        st = hl_figure_add(f, n, x, y, HL_DRAW_DOTS, colors[c], labels ? labels[c] : NULL, err);
+        free(x), free(y);
+    }
+    if (st != HL_OK) {
+        hl_figure_free(f);
+        return st;
+    }
+    return write_figure(f, dir, formats, err);
 }

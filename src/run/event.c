@@ -75,6 +75,26 @@ static void event_clear(hl_run *r)
     r->ev_z = NULL;
 }
 
+/* A surface whose every first derivative is a number (q = c, a plane) is
+ * affine: the event then skips the Taylor-mode pass of its tape. */
+static void declare_affine(hl_event *ev, hl_tape *tape, const hl_expr *g, hl_run *r)
+{
+    int n2 = 2 * r->N;
+    double *grad = hl_xmalloc((size_t)n2 * sizeof *grad),
+           *zero = hl_xcalloc((size_t)n2, sizeof *zero);
+    int affine = 1;
+    for (int i = 0; i < n2 && affine; i++) {
+        const hl_expr *d = hl_expr_diff(hl_system_pool(r->sys), g, r->names[i]);
+        affine = d->kind == HL_NUM && hl_expr_eval_d(&grad[i], d, 0, NULL, NULL, NULL) == HL_OK &&
+                 isfinite(grad[i]);
+    }
+    double g0;
+    hl_tape_eval_d(&g0, zero, tape);
+    if (affine && isfinite(g0))
+        hl_event_set_affine(ev, grad, g0);
+    free(grad), free(zero);
+}
+
 hl_status hl_run_event(hl_run *r, const char *surface, hl_event_dir dir, long stop_after,
                        hl_run_crossing_fn fn, void *arg, hl_error *err)
 {
@@ -87,6 +107,8 @@ hl_status hl_run_event(hl_run *r, const char *surface, hl_event_dir dir, long st
     st = hl_tape_new(&g, &info.g, 1, r->names, 2 * r->N, err);
     if (st == HL_OK)
         st = hl_event_new(&ev, g, dir, err);
+    if (st == HL_OK)
+        declare_affine(ev, g, info.g, r);
     if (st != HL_OK) {
         hl_tape_free(g);
         return st;

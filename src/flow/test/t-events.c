@@ -8,8 +8,13 @@
  *   a non-zero return stops hl_flow_evolve at the crossing;
  *   outputs and crossings come in the order of time;
  *   Hermite: crossings between exact states of the oscillator converge
- *     at order >= 4 in dt. */
+ *     at order >= 4 in dt;
+ *   close pairs: q = sin t crosses q = 1 - eps at pi/2 + 2 pi k -+ acos(1 - eps),
+ *     two crossings about 2 sqrt(2 eps) apart, far inside one Taylor step
+ *     (~0.8): none missed, each time right to the conditioning of the
+ *     root (|dt| sin(acos(1 - eps)) < 1e-13). */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -226,6 +231,45 @@ static void hermite(void)
     CHECK(e3 < 1e-5);
 }
 
+/* q = a with a = 1 - eps near q = sin t's maximum, in the direction dir. */
+static void close_pair(double eps, hl_event_dir dir)
+{
+    hl_tape *f = field(0);
+    hl_error err;
+    char text[64];
+    snprintf(text, sizeof text, "q - (1 - %.17g)", eps);
+    const hl_expr *g[1];
+    CHECK(hl_parse(&g[0], P, text, &err) == HL_OK);
+    hl_tape *gt = make_tape(g, 1);
+    hl_flow *fl = NULL;
+    hl_event *ev = NULL;
+    static seen s;
+    memset(&s, 0, sizeof s);
+    CHECK(hl_flow_new(&fl, f, 1e-13, 1e-13, &err) == HL_OK);
+    CHECK(hl_event_new(&ev, gt, dir, &err) == HL_OK);
+    CHECK(hl_flow_set_event(fl, ev, on_cross, &s, &err) == HL_OK);
+    double t = 0, z[2] = {0, 1}, t1 = 60, a = 1 - eps, d = acos(a), slope = sqrt(1 - a * a);
+    CHECK(hl_flow_evolve(fl, &t, t1, z, &err) == HL_OK);
+    double want[64];
+    int n = 0;
+    for (int k = 0; k < 10; k++)
+        for (int side = -1; side <= 1; side += 2) {
+            double tk = M_PI / 2 + 2 * M_PI * k + side * d;
+            if (tk < t1 && (dir == HL_EVENT_BOTH || side == -dir))
+                want[n++] = tk;
+        }
+    CHECK_MSG(s.n == n, "eps %g, direction %d: %d crossings, want %d", eps, (int)dir, s.n, n);
+    double worst = 0;
+    for (int k = 0; k < s.n && k < n; k++)
+        worst = fmax(worst, fabs(s.t[k] - want[k]) * slope);
+    CHECK_MSG(worst < 1e-13, "eps %g: worst |dt| slope %.3g", eps, worst);
+    printf("close pair eps = %g (%.3g apart), direction %+d: %d crossings, max |dt| slope %.3g\n",
+           eps, 2 * d, (int)dir, s.n, worst);
+    hl_event_free(ev);
+    hl_flow_free(fl);
+    hl_tape_free(f), hl_tape_free(gt);
+}
+
 int main(void)
 {
     P = hl_pool_new();
@@ -236,6 +280,9 @@ int main(void)
     pendulum(2.5, 20);
     stop_and_order();
     hermite();
+    for (int dir = -1; dir <= 1; dir++)
+        for (double eps = 1e-4; eps > 1e-15; eps *= 1e-4)
+            close_pair(eps, (hl_event_dir)dir);
     hl_pool_free(P);
     return HL_TEST_END();
 }
