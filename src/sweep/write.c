@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "base/buf.h"
@@ -96,6 +97,11 @@ hl_status sweep_write_csv(const hl_sweep *sw, const hl_sweep_table *tab, const c
     char *tmp = hl_xmalloc(n);
     snprintf(tmp, n, "%s.tmpXXXXXX", path);
     int fd = mkstemp(tmp);
+    if (fd >= 0) { /* mkstemp's 0600 would keep the file from its owner's group */
+        mode_t mask = umask(0);
+        umask(mask);
+        fchmod(fd, 0666 & ~mask);
+    }
     FILE *fp = fd >= 0 ? fdopen(fd, "w") : NULL;
     int st = HL_OK;
     if (fp == NULL) {
