@@ -221,18 +221,6 @@ static int fail_in_file(hl_error *err, const char *path, const char *text)
     return rc;
 }
 
-/* Which option an error's text came from, said before it. */
-static void name_option(hl_error *err, const hl_sweep_spec *spec)
-{
-    if (err->src == NULL)
-        return;
-    const char *texts[] = {spec->grid, spec->random, spec->params, spec->schemes, spec->dts};
-    const char *names[] = {"--grid", "--random", "--param", "--scheme", "--dt"};
-    for (int i = 0; i < 5; i++)
-        if (texts[i] != NULL && err->src == texts[i])
-            hl_error_prefix(err, "in %s", names[i]);
-}
-
 /* ---- running ---------------------------------------------------------------- */
 
 typedef struct sink {
@@ -447,10 +435,8 @@ int cmd_sweep(int argc, char **argv, const cli_command *cmd)
     if (rc < 0 && hl_sweep_new(&sw, &sp, &err) != HL_OK) {
         if (csv != NULL && err.src == csv)
             rc = fail_in_file(&err, s.init_file, csv);
-        else {
-            name_option(&err, &sp);
+        else /* the message names the field: "grid: ...", "schemes: ..." */
             rc = cli_fail(&err);
-        }
     }
     if (rc < 0)
         rc = sweep_body(sw, &s, &o);

@@ -164,7 +164,7 @@ err_has ":3:1:"
 run 2 sweep -H "$PEND" --scheme rk4 --t 1 --dt 0.1 --grid 'q=0,p=0' --out /nonexistent/dir/x.csv
 err_has "/nonexistent/dir/x.csv"
 run 2 sweep -H "$PEND" --scheme nosuch --t 1 --dt 0.1 --grid 'q=0,p=0'
-err_has "in --scheme"
+err_has "schemes: unknown scheme 'nosuch'"
 
 # ---- --plot: a map per scheme and step ---------------------------------------------
 if "$HAMLIE" sweep -H "$PEND" --grid 'q=-1:1:9,p=-1:1:9' --scheme euler,rk4 --dt 0.1 --t 2 \
