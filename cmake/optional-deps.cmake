@@ -47,3 +47,6 @@ if(HDF5_LIB)
   set_property(SOURCE ${PROJECT_SOURCE_DIR}/src/report/hdf5_api.c APPEND PROPERTY
                COMPILE_DEFINITIONS HAMLIE_HDF5_PATH="${HDF5_LIB_REAL}")
 endif()
+# the sweep's HDF5 file records the version that wrote it
+set_property(SOURCE ${PROJECT_SOURCE_DIR}/src/sweep/sweep_h5.c APPEND PROPERTY
+             COMPILE_DEFINITIONS HAMLIE_VERSION_TEXT="${PROJECT_VERSION}")
