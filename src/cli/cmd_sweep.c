@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "cli/cli.h"
+#include "hamlie/h5.h"
 #include "hamlie/sweep.h"
 #include "hamlie/sweepplot.h"
 
@@ -177,6 +178,9 @@ static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
         return cli_usage(cmd, "--resume continues the sweep of --out FILE: name it");
     if (s->formats != NULL && s->plot == NULL)
         return cli_usage(cmd, "--format is for the maps of --plot DIR");
+    hl_error err; /* without libhdf5, say so before computing (and journaling) */
+    if (hl_h5_is_h5_path(s->out) && hl_h5_available(&err) != HL_OK)
+        return cli_fail(&err);
     return check_numbers(s, cmd);
 }
 

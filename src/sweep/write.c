@@ -11,13 +11,8 @@
 #include <unistd.h>
 
 #include "base/buf.h"
+#include "hamlie/h5.h"
 #include "sweep/sweep_impl.h"
-
-static int ends_with(const char *s, const char *tail)
-{
-    size_t n = strlen(s), k = strlen(tail);
-    return n >= k && strcmp(s + n - k, tail) == 0;
-}
 
 /* A CSV field: quoted when it holds a comma, a quote or a line break. */
 static void put_field(hl_buf *b, const char *s)
@@ -135,7 +130,7 @@ hl_status hl_sweep_write(const hl_sweep *sw, const hl_sweep_table *tab, const ch
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
                             "the table has %ld of the sweep's %ld members: nothing written",
                             hl_sweep_table_done(tab), sw->count);
-    if (ends_with(path, ".h5"))
+    if (hl_h5_is_h5_path(path)) /* .h5 or .hdf5 */
         return hl_sweep_write_h5(sw, tab, path, err);
     return sweep_write_csv(sw, tab, path, err);
 }
