@@ -3,7 +3,8 @@
  *   members listed backwards (explicit, implicit and adaptive schemes,
  *   the reference, orders, chaos);
  *   a member's row equals a single run of its own (a fresh system and
- *   hl_run_fixed: final state and max |H - H0| bit for bit), and its
+ *   hl_run_fixed or hl_run_adaptive: final state and max |H - H0| bit for
+ *   bit), and its
  *   chaos columns a fresh hl_chaos_run;
  *   Stormer-Verlet's observed order is 2 on the pendulum away from the
  *   separatrix;
@@ -147,6 +148,18 @@ static void test_single_run(void)
         CHECK(st == HL_OK && row[hl_sweep_column_index(sw, "megno")] == res.megno_mean &&
               row[hl_sweep_column_index(sw, "mlce")] == res.mlce);
         hl_chaos_free(c);
+        /* the adaptive member (scheme 2) of the same point: a fresh run without
+         * a progress callback (which would restart the integrator, run.h) */
+        const double *lie = hl_sweep_table_row(tab, ((8 * 1 + 0) * 3 + 2) * 2 + 1);
+        hl_run *ad = NULL;
+        st = hl_run_new(&ad, sys, NULL, &err);
+        if (st == HL_OK)
+            st = hl_run_adaptive(ad, z0, 1e-13, 0.1, 4, 1, NULL, NULL, &s, &err);
+        CHECK(st == HL_OK && lie != NULL &&
+              lie[hl_sweep_column_index(sw, "q")] == hl_run_state(ad)[0] &&
+              lie[hl_sweep_column_index(sw, "p")] == hl_run_state(ad)[1] &&
+              lie[hl_sweep_column_index(sw, "max_dH")] == s.max_dH);
+        hl_run_free(ad);
     }
     hl_run_free(run);
     hl_scheme_free(sch);
