@@ -101,6 +101,10 @@ const char *hl_sweep_column(const hl_sweep *sw, int c);
 /* The index of the column named name, or -1. */
 int hl_sweep_column_index(const hl_sweep *sw, const char *name);
 int hl_sweep_ndof(const hl_sweep *sw); /* N: the start and the state are 2N columns */
+/* The points and point i's start z (2N values, q then p): a function of
+ * the spec and i alone. */
+long hl_sweep_npoints(const hl_sweep *sw);
+void hl_sweep_point(const hl_sweep *sw, long i, double *z);
 int hl_sweep_nschemes(const hl_sweep *sw);
 const char *hl_sweep_scheme(const hl_sweep *sw, int i);
 const hl_sweep_spec *hl_sweep_get_spec(const hl_sweep *sw); /* its own copies */

@@ -346,6 +346,7 @@ static int run_all(hl_sweep *sw, sink *k, const sweep_opts *s, const cli_opts *o
 }
 
 int sweep_plot(const hl_sweep *sw, const hl_sweep_table *tab, const char *dir, const char *formats);
+int sweep_plot_check(const hl_sweep *sw);
 
 static int sweep_body(hl_sweep *sw, const sweep_opts *s, const cli_opts *o)
 {
@@ -354,6 +355,9 @@ static int sweep_body(hl_sweep *sw, const sweep_opts *s, const cli_opts *o)
         hl_error_clear(&err);
         if (hl_figure_drawable(&err) != HL_OK)
             return cli_fail(&err);
+        int rc = sweep_plot_check(sw);
+        if (rc >= 0)
+            return rc;
     }
     int rc = s->out != NULL ? check_out(s->out, s->resume) : -1;
     if (rc >= 0)

@@ -11,6 +11,32 @@
 #include "hamlie/sweepplot.h"
 
 int sweep_plot(const hl_sweep *sw, const hl_sweep_table *tab, const char *dir, const char *formats);
+int sweep_plot_check(const hl_sweep *sw);
+
+/* Before any member runs: the maps need a grid in exactly two variables. */
+int sweep_plot_check(const hl_sweep *sw)
+{
+    int n2 = 2 * hl_sweep_ndof(sw), varying = 0;
+    double *first = hl_xcalloc((size_t)n2, sizeof *first), *z = hl_xcalloc((size_t)n2, sizeof *z);
+    char *varies = hl_xcalloc((size_t)n2, 1);
+    hl_sweep_point(sw, 0, first);
+    for (long i = 1; i < hl_sweep_npoints(sw); i++) {
+        hl_sweep_point(sw, i, z);
+        for (int k = 0; k < n2; k++)
+            varies[k] |= z[k] != first[k];
+    }
+    for (int k = 0; k < n2; k++)
+        varying += varies[k];
+    free(first);
+    free(z);
+    free(varies);
+    if (hl_sweep_get_spec(sw)->grid != NULL && varying == 2)
+        return -1;
+    fprintf(stderr, "hamlie: error: --plot draws maps of a grid in two variables (%s)\n",
+            hl_sweep_get_spec(sw)->grid == NULL ? "the points are not a grid"
+                                                : "this grid varies another number of them");
+    return CLI_ERROR;
+}
 
 /* The two start columns that vary over the points (the grid's axes). */
 static int grid_axes(const hl_sweep *sw, const hl_sweep_table *tab, int *cx, int *cy)

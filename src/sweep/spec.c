@@ -438,6 +438,15 @@ int hl_sweep_ndof(const hl_sweep *sw)
 {
     return sw->N;
 }
+long hl_sweep_npoints(const hl_sweep *sw)
+{
+    return sw->npoints;
+}
+void hl_sweep_point(const hl_sweep *sw, long i, double *z)
+{
+    if (i >= 0 && i < sw->npoints)
+        sweep_point(sw, i, z);
+}
 int hl_sweep_column_index(const hl_sweep *sw, const char *name)
 {
     for (int c = 0; c < sw->ncols; c++)

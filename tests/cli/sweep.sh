@@ -186,6 +186,9 @@ err_has "/nonexistent/dir/x.csv"
 run 2 sweep -H "$PEND" --scheme nosuch --t 1 --dt 0.1 --grid 'q=0,p=0'
 err_has "schemes: unknown scheme 'nosuch'"
 
+bad_input "a grid in two variables" --grid 'q=0:1:3,p=1' --dt 0.5 --plot "$tmp/nomaps"
+[ ! -e "$tmp/nomaps" ] && ok || bad "--plot of a 1-D grid left a folder"
+
 # ---- --plot: a map per scheme and step ---------------------------------------------
 if "$HAMLIE" sweep -H "$PEND" --grid 'q=-1:1:9,p=-1:1:9' --scheme euler,rk4 --dt 0.1 --t 2 \
     --chaos --tol 1e-10 --plot "$tmp/maps" --out "$tmp/maps.csv" 2>"$tmp/err"; then
