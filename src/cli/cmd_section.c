@@ -11,6 +11,7 @@
 
 #include "cli/crossings.h"
 #include "cli/section_orbits.h"
+#include "hamlie/h5.h"
 #include "hamlie/section.h"
 #include "hamlie/sectionplot.h"
 
@@ -39,7 +40,8 @@ const char cmd_section_help[] =
     "  --tol TOL            the adaptive integrator's tolerance (default 1e-13)\n"
     "  --dt STEP            the fixed step of --scheme\n"
     "  --t-max T            each orbit's time bound (default 100 N, at least 1000)\n"
-    "  --out FILE           the CSV (default: standard output)\n"
+    "  --out FILE           the CSV (default: standard output); FILE.h5 an HDF5\n"
+    "                       file with the inputs and each orbit's status too\n"
     "  --plot DIR           draw DIR/section.png: the crossings of every orbit, a\n"
     "                       colour per orbit, in the plane of the other coordinate\n"
     "                       and its momentum\n"
@@ -153,6 +155,9 @@ static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
     s->threads = section_cores();
     if (s->threads_s && (rc = read_long(&s->threads, s->threads_s, "--threads", 1, 1024, cmd)) >= 0)
         return rc;
+    hl_error err; /* without libhdf5, say so before computing */
+    if (hl_h5_is_h5_path(s->out) && hl_h5_available(&err) != HL_OK)
+        return cli_fail(&err);
     return -1;
 }
 
@@ -241,6 +246,11 @@ static void gather(job *j)
             fprintf(stderr, "hamlie section: orbit %d failed after %ld crossings: %s\n", i,
                     r->table.n, r->why);
             j->failed++;
+            hl_error why; /* its status and reason in the HDF5 file */
+            hl_error_clear(&why);
+            why.status = r->status;
+            snprintf(why.msg, sizeof why.msg, "%s", r->why);
+            crossings_orbit_failed(&j->table, i, &why);
         }
         for (long k = 0; k < r->table.n; k++) {
             const double *row = crossings_row(&r->table, k);
@@ -417,6 +427,27 @@ static int write_csv(const job *j, hl_system *sys, const sec_opts *s, const char
     return section_write_chaos_csv(&j->table, j->orbits, sys, path);
 }
 
+/* --out FILE.h5: the crossings, the orbits and the inputs (crossings.c). */
+static int write_h5(const job *j, hl_system *sys, const sec_opts *s, const cli_opts *o, int M,
+                    const double *zs)
+{
+    crossings_h5_info info = {.command = "section",
+                              .H = o->H,
+                              .energy_input = s->energy,
+                              .surface = s->surface,
+                              .direction = crossings_direction_name(s->dir),
+                              .scheme = adaptive(s) ? "lie (adaptive Taylor)" : s->scheme,
+                              .located_on = adaptive(s) ? "taylor-polynomial" : "hermite-cubic",
+                              .energy = j->E,
+                              .tol = adaptive(s) ? s->tol : 0,
+                              .dt = adaptive(s) ? 0 : s->dt,
+                              .t_max = s->t_max,
+                              .norbits = M,
+                              .per_orbit = s->ncross,
+                              .seeds = zs};
+    return crossings_write_h5(&j->table, sys, s->out, &info);
+}
+
 /* The summary line (text output). */
 static void put_summary(hl_buf *out, const job *j, const sec_opts *s)
 {
@@ -469,7 +500,9 @@ static int write_outputs(const job *j, hl_system *sys, hl_section *sec, const se
     if (s->plot != NULL && (rc = draw(j, sys, sec, s)) != CLI_OK)
         return rc;
     int to_stdout = s->out == NULL && o->format != CLI_JSON;
-    if (s->out != NULL || to_stdout)
+    if (s->out != NULL && hl_h5_is_h5_path(s->out))
+        rc = write_h5(j, sys, s, o, j->M, zs);
+    else if (s->out != NULL || to_stdout)
         rc = write_csv(j, sys, s, s->out != NULL ? s->out : "-");
     if (rc == CLI_OK && !to_stdout) {
         hl_buf out;

@@ -104,6 +104,7 @@ static void classify(worker *w, section_orbit *orbit, const double *z0)
     if (hl_chaos_run(w->chaos, z0, NULL, orbit->span, 0, NULL, NULL, &r, &err) != HL_OK) {
         if (err.status != HL_ESTOP) {
             orbit->failed = 1;
+            orbit->status = err.status;
             snprintf(orbit->why, sizeof orbit->why, "its MEGNO failed: %.280s", err.msg);
         }
         return;
@@ -128,6 +129,7 @@ static void run_orbit(worker *w, long i)
         if (err.status == HL_ESTOP)
             return; /* interrupted: not done */
         orbit->failed = 1;
+        orbit->status = err.status;
         snprintf(orbit->why, sizeof orbit->why, "%.300s", err.msg);
     } else if (job->chaos)
         classify(w, orbit, z0);

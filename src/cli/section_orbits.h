@@ -49,6 +49,7 @@ typedef struct section_orbit {
     int chaotic;     /* 1 chaotic, 0 regular, -1 not classified */
     int done;        /* run to its end (not cut by an interrupt) */
     int failed;      /* the orbit (or its <Y>) failed: why says */
+    hl_status status; /* and its status */
     char why[320];
 } section_orbit;
 
