@@ -142,7 +142,8 @@ static long next_chunk(master *m, int threads, long *first)
         return 0;
     long bytes_cap = CHUNK_BYTES / (24 + 8L * job->ncols);
     long want = left / (SHARE * (long)m->size);
-    long least = 8L * (threads > 0 ? threads : 1); /* every thread busy a while */
+    /* a rank's threads share a chunk by groups: a few groups each */
+    long least = 4L * (threads > 0 ? threads : 1) * job->group;
     if (want < least)
         want = least;
     if (want > CHUNK_MAX)

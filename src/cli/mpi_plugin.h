@@ -91,16 +91,24 @@ int cli_mpi_launched(void);
  * ranks of this node (OMPI_COMM_WORLD_LOCAL_SIZE), at least 1. */
 int cli_mpi_default_threads(int cores);
 
-typedef struct cli_sweep_mpi_opts {
-    const char *out; /* the output file (required: rank 0 writes it) */
-    int resume;      /* --resume: rank 0 loads the journal */
-    int threads;     /* per rank */
-    int progress;    /* CLI_PROGRESS_* */
-} cli_sweep_mpi_opts;
-
-/* `hamlie sweep` under MPI: loads the plugin, runs the protocol, and on
- * rank 0 keeps the table and the journal and writes the file.  Returns
- * the command's exit status (rank 0's is the sweep's; the others 0). */
-int cli_sweep_mpi(hl_sweep *sw, const cli_sweep_mpi_opts *o);
+/* cmd_sweep.c's hooks.  First, with the sweep built on every rank: -1
+ * when not under MPI (nor forced by --mpi) and on rank 0, which goes on;
+ * otherwise the exit status of this rank's part (the others compute here,
+ * or the plugin could not be loaded: CLI_ERROR).  *threads: when not
+ * given, the cores divided among this node's ranks. */
+int cli_sweep_mpi_begin(hl_sweep *sw, int forced, long *threads, int threads_given);
+/* Whether begin started MPI (rank 0 then serves instead of running). */
+int cli_sweep_mpi_active(void);
+/* Rank 0, in place of the threaded run: the members the table lacks
+ * handed out, every result stored in tab and journal (may be NULL) with
+ * progress; -1 when all are done, else the exit status (said on stderr:
+ * CLI_INTERRUPTED, CLI_ERROR). */
+int cli_sweep_mpi_serve(hl_sweep *sw, hl_sweep_table *tab, hl_sweep_journal *journal,
+                        const char *out, int progress_mode);
+/* Rank 0, with the command's exit status, once the file is written or not:
+ * returns it after MPI_Finalize, or ends the whole job with it (abort)
+ * after an interrupt or an error, the journal being closed.  A no-op but
+ * for MPI. */
+int cli_sweep_mpi_end(int rc);
 
 #endif
