@@ -12,6 +12,7 @@ packages=(
   libgccjit-12-dev                                      # optional: tapes compiled to machine code (hl_tape_jit)
   python3-dev python3-numpy python3-mpmath python3-pytest  # the Python binding (python/) and its tests
   python3-nbclient python3-ipykernel python3-matplotlib  # the notebook docs/notebooks/tour.ipynb, run headless
+  libopenmpi-dev openmpi-bin                            # optional: `mpirun hamlie sweep` (the plugin hamlie-mpi.so)
 )
 
 missing=()
