@@ -98,6 +98,9 @@ void hl_sweep_free(hl_sweep *sw); /* NULL is a no-op */
 long hl_sweep_count(const hl_sweep *sw);
 int hl_sweep_ncols(const hl_sweep *sw);
 const char *hl_sweep_column(const hl_sweep *sw, int c);
+/* The index of the column named name, or -1. */
+int hl_sweep_column_index(const hl_sweep *sw, const char *name);
+int hl_sweep_ndof(const hl_sweep *sw); /* N: the start and the state are 2N columns */
 int hl_sweep_nschemes(const hl_sweep *sw);
 const char *hl_sweep_scheme(const hl_sweep *sw, int i);
 const hl_sweep_spec *hl_sweep_get_spec(const hl_sweep *sw); /* its own copies */
@@ -158,6 +161,8 @@ hl_status hl_sweep_journal_open(hl_sweep_journal **out, const hl_sweep *sw, cons
                                 int resume, hl_sweep_table *tab, hl_error *err);
 int hl_sweep_journal_append(const hl_sweep_result *r, void *journal); /* an hl_sweep_fn */
 void hl_sweep_journal_close(hl_sweep_journal *j, int remove_file);
+/* 1 once an append failed (disk full): the sweep was stopped by it. */
+int hl_sweep_journal_failed(const hl_sweep_journal *j);
 
 #ifdef __cplusplus
 }

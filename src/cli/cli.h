@@ -202,6 +202,8 @@ int cmd_errors(int argc, char **argv, const cli_command *self); extern const cha
 int cmd_reproduce(int argc, char **argv, const cli_command *self); extern const char cmd_reproduce_help[];
 int cmd_exact(int argc, char **argv, const cli_command *self); extern const char cmd_exact_help[];
 int cmd_chaos(int argc, char **argv, const cli_command *self); extern const char cmd_chaos_help[];
+int cmd_sweep(int argc, char **argv, const cli_command *self);
+extern const char cmd_sweep_help[];
 
 /* The scheme a command was given: --map, else --equations, else the
  * catalog's name (with its parameter, e.g. lie's order); the error says

@@ -99,6 +99,9 @@ static const cli_command commands[] = {
     {"exact", cmd_exact, "the exact scheme of a quadratic H in closed form, checked (§3)",
      cmd_exact_help},
     {"chaos", cmd_chaos, "chaos indicators of an orbit: MEGNO, FLI, Lyapunov exponent", cmd_chaos_help},
+    {"sweep", cmd_sweep,
+     "many runs at once: points x parameters x schemes x steps, on every core",
+     cmd_sweep_help},
     {"reproduce", cmd_reproduce, "the paper's figures and formulas, regenerated and checked",
      cmd_reproduce_help},
 };

@@ -1,0 +1,209 @@
+/* The journal of a sweep (sweep.h): every result appended as it completes
+ * and flushed, so an interrupted sweep resumes from what was done.
+ *
+ *   header:  "HLSWJRN1", fingerprint u64, ncols u32, 0 u32
+ *   record:  member i64, status i32, reason length u32, ncols doubles,
+ *            the reason's bytes, FNV-1a of all the above u64
+ *
+ * In the machine's byte order: a journal is for resuming on the machine
+ * that wrote it.  A record whose checksum does not match, or that is cut
+ * short (the process killed mid-write), ends the journal: it and anything
+ * after it are cut off before new records are appended. */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "base/buf.h"
+#include "sweep/sweep_impl.h"
+
+#define MAGIC "HLSWJRN1"
+#define HEADER_BYTES 24
+
+struct hl_sweep_journal {
+    FILE *fp;
+    char *path;
+    int ncols;
+    hl_buf rec; /* one record being built */
+    int failed; /* a write failed: the sweep is told to stop */
+};
+
+static uint64_t fnv(const unsigned char *p, size_t n)
+{
+    uint64_t h = 0xCBF29CE484222325ULL;
+    for (size_t i = 0; i < n; i++)
+        h = (h ^ p[i]) * 0x100000001B3ULL;
+    return h;
+}
+
+static void header(unsigned char *h, const hl_sweep *sw)
+{
+    uint32_t ncols = (uint32_t)sw->ncols, zero = 0;
+    memcpy(h, MAGIC, 8);
+    memcpy(h + 8, &sw->fingerprint, 8);
+    memcpy(h + 16, &ncols, 4);
+    memcpy(h + 20, &zero, 4);
+}
+
+/* One record at p (avail bytes) into r; its length, or 0 when it is torn. */
+static size_t parse_record(const unsigned char *p, size_t avail, int ncols, hl_sweep_result *r,
+                           double *row)
+{
+    size_t fixed = 8 + 4 + 4 + 8 * (size_t)ncols;
+    if (avail < fixed + 8)
+        return 0;
+    int64_t member;
+    int32_t status;
+    uint32_t rlen;
+    memcpy(&member, p, 8);
+    memcpy(&status, p + 8, 4);
+    memcpy(&rlen, p + 12, 4);
+    if (rlen >= HL_SWEEP_REASON || avail < fixed + rlen + 8)
+        return 0;
+    uint64_t sum;
+    memcpy(&sum, p + fixed + rlen, 8);
+    if (sum != fnv(p, fixed + rlen))
+        return 0;
+    memcpy(row, p + 16, 8 * (size_t)ncols);
+    r->member = (long)member;
+    r->status = (hl_status)status;
+    memcpy(r->reason, p + fixed, rlen);
+    r->reason[rlen] = '\0';
+    r->row = row;
+    return fixed + rlen + 8;
+}
+
+static hl_status read_file(unsigned char **data, size_t *n, const char *path, hl_error *err)
+{
+    *data = NULL;
+    *n = 0;
+    FILE *fp = fopen(path, "rb");
+    if (fp == NULL)
+        return errno == ENOENT ? HL_OK
+                               : hl_error_set(err, HL_EIO, NULL, -1, 0, "cannot read '%s': %s",
+                                              path, strerror(errno));
+    hl_buf b;
+    hl_buf_init(&b);
+    char chunk[65536];
+    size_t k;
+    while ((k = fread(chunk, 1, sizeof chunk, fp)) > 0)
+        hl_buf_putn(&b, chunk, k);
+    int bad = ferror(fp);
+    fclose(fp);
+    *n = b.len;
+    *data = (unsigned char *)hl_buf_take(&b);
+    if (bad)
+        return hl_error_set(err, HL_EIO, NULL, -1, 0, "reading '%s' failed", path);
+    return HL_OK;
+}
+
+/* Fills tab from the journal's data; *good is the length of its sound part. */
+static hl_status load(const hl_sweep *sw, const char *path, const unsigned char *data, size_t n,
+                      hl_sweep_table *tab, size_t *good, hl_error *err)
+{
+    unsigned char h[HEADER_BYTES];
+    header(h, sw);
+    *good = 0;
+    if (n < HEADER_BYTES)
+        return HL_OK; /* torn in its header: nothing was recorded */
+    if (memcmp(data, MAGIC, 8) != 0)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "'%s' is not a sweep journal", path);
+    if (memcmp(data, h, HEADER_BYTES) != 0)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                            "the journal '%s' is another sweep's (its fingerprint differs): "
+                            "remove it to start afresh",
+                            path);
+    double *row = hl_xcalloc((size_t)sw->ncols, sizeof *row);
+    hl_sweep_result r;
+    size_t at = HEADER_BYTES, k;
+    while ((k = parse_record(data + at, n - at, sw->ncols, &r, row)) > 0) {
+        if (r.member >= 0 && r.member < sw->count)
+            hl_sweep_table_store(&r, tab);
+        at += k;
+    }
+    free(row);
+    *good = at;
+    return HL_OK;
+}
+
+hl_status hl_sweep_journal_open(hl_sweep_journal **out, const hl_sweep *sw, const char *path,
+                                int resume, hl_sweep_table *tab, hl_error *err)
+{
+    *out = NULL;
+    hl_buf name;
+    hl_buf_init(&name);
+    hl_buf_printf(&name, "%s.journal", path);
+    char *jpath = hl_buf_take(&name);
+    size_t n = 0, good = 0;
+    unsigned char *data = NULL;
+    int st = resume ? read_file(&data, &n, jpath, err) : HL_OK;
+    if (st == HL_OK && resume)
+        st = load(sw, jpath, data, n, tab, &good, err);
+    free(data);
+    FILE *fp = NULL;
+    if (st == HL_OK) { /* the torn tail cut off, then records appended after the sound part */
+        fp = fopen(jpath, good > 0 ? "r+b" : "wb");
+        if (fp == NULL || (good > 0 && (ftruncate(fileno(fp), (off_t)good) != 0 ||
+                                        fseek(fp, (long)good, SEEK_SET) != 0)))
+            st = hl_error_set(err, HL_EIO, NULL, -1, 0, "cannot write the journal '%s': %s", jpath,
+                              strerror(errno));
+    }
+    if (st == HL_OK && good == 0) {
+        unsigned char h[HEADER_BYTES];
+        header(h, sw);
+        if (fwrite(h, 1, HEADER_BYTES, fp) != HEADER_BYTES || fflush(fp) != 0)
+            st = hl_error_set(err, HL_EIO, NULL, -1, 0, "cannot write the journal '%s'", jpath);
+    }
+    if (st != HL_OK) {
+        if (fp != NULL)
+            fclose(fp);
+        free(jpath);
+        return st;
+    }
+    hl_sweep_journal *j = hl_xcalloc(1, sizeof *j);
+    j->fp = fp;
+    j->path = jpath;
+    j->ncols = sw->ncols;
+    hl_buf_init(&j->rec);
+    *out = j;
+    return HL_OK;
+}
+
+int hl_sweep_journal_append(const hl_sweep_result *r, void *arg)
+{
+    hl_sweep_journal *j = arg;
+    int64_t member = r->member;
+    int32_t status = (int32_t)r->status;
+    uint32_t rlen = (uint32_t)strnlen(r->reason, HL_SWEEP_REASON - 1);
+    hl_buf *b = &j->rec;
+    b->len = 0;
+    hl_buf_putn(b, (const char *)&member, 8);
+    hl_buf_putn(b, (const char *)&status, 4);
+    hl_buf_putn(b, (const char *)&rlen, 4);
+    hl_buf_putn(b, (const char *)r->row, 8 * (size_t)j->ncols);
+    hl_buf_putn(b, r->reason, rlen);
+    uint64_t sum = fnv((const unsigned char *)b->s, b->len);
+    hl_buf_putn(b, (const char *)&sum, 8);
+    if (fwrite(b->s, 1, b->len, j->fp) != b->len || fflush(j->fp) != 0)
+        j->failed = 1;
+    return j->failed;
+}
+
+void hl_sweep_journal_close(hl_sweep_journal *j, int remove_file)
+{
+    if (j == NULL)
+        return;
+    fclose(j->fp);
+    if (remove_file)
+        remove(j->path);
+    hl_buf_clear(&j->rec);
+    free(j->path);
+    free(j);
+}
+
+int hl_sweep_journal_failed(const hl_sweep_journal *j)
+{
+    return j != NULL && j->failed;
+}

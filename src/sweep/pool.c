@@ -1,0 +1,150 @@
+/* hl_sweep_run: the members on POSIX threads.  The members listed are cut
+ * into units — runs of consecutive members of one (point, paramset), so the
+ * chaos indicators are computed once per unit — handed out one at a time
+ * through an atomic counter.  Each thread has its own worker (system, runs,
+ * chaos object); results and progress go out one call at a time under a
+ * mutex.  A row depends only on its member, never on the thread. */
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/buf.h"
+#include "sweep/sweep_impl.h"
+
+typedef struct pool {
+    const hl_sweep *sw;
+    const long *members; /* NULL: 0 .. n-1 */
+    long n;
+    long *unit; /* nunits + 1 starts in the list */
+    long nunits;
+    atomic_long next; /* the next unit to hand out */
+    atomic_int stop;  /* a callback asked to stop */
+    pthread_mutex_t lock;
+    long done; /* under lock */
+    hl_sweep_fn fn;
+    void *fn_arg;
+    hl_progress_fn progress;
+    void *progress_arg;
+} pool;
+
+static long member_at(const pool *p, long i)
+{
+    return p->members != NULL ? p->members[i] : i;
+}
+
+/* Members m and m' are in one group when they share point and paramset. */
+static long group_of(const hl_sweep *sw, long m)
+{
+    return m / ((long)sw->nschemes * sw->ndts);
+}
+
+static void cut_units(pool *p)
+{
+    p->unit = hl_xcalloc((size_t)p->n + 1, sizeof *p->unit);
+    p->nunits = 0;
+    for (long i = 0; i < p->n; i++)
+        if (i == 0 || group_of(p->sw, member_at(p, i)) != group_of(p->sw, member_at(p, i - 1)))
+            p->unit[p->nunits++] = i;
+    p->unit[p->nunits] = p->n;
+}
+
+/* Hands one result out, under the lock. */
+static void deliver(pool *p, const hl_sweep_result *r)
+{
+    pthread_mutex_lock(&p->lock);
+    p->done++;
+    int stop = p->fn != NULL && p->fn(r, p->fn_arg) != 0;
+    if (!stop && p->progress != NULL)
+        stop = p->progress((double)p->done, (double)p->n, p->progress_arg) != 0;
+    pthread_mutex_unlock(&p->lock);
+    if (stop)
+        atomic_store(&p->stop, 1);
+}
+
+static void *work(void *arg)
+{
+    pool *p = arg;
+    sweep_worker *w = sweep_worker_new(p->sw);
+    double *row = hl_xcalloc((size_t)p->sw->ncols, sizeof *row);
+    hl_sweep_result r;
+    memset(&r, 0, sizeof r);
+    r.row = row;
+    for (;;) {
+        long u = atomic_fetch_add(&p->next, 1);
+        if (u >= p->nunits || atomic_load(&p->stop))
+            break;
+        for (long i = p->unit[u]; i < p->unit[u + 1] && !atomic_load(&p->stop); i++) {
+            r.member = member_at(p, i);
+            sweep_member(w, r.member, row, &r.status, r.reason);
+            deliver(p, &r);
+        }
+    }
+    free(row);
+    sweep_worker_free(w);
+    return NULL;
+}
+
+static hl_status check_members(const hl_sweep *sw, const long *members, long n, int threads,
+                               hl_error *err)
+{
+    if (n < 0 || threads < 1)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                            "a sweep runs n >= 0 members on at least one thread (%ld, %d)", n,
+                            threads);
+    if (members == NULL && n > sw->count)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "%ld members asked of %ld", n, sw->count);
+    for (long i = 0; members != NULL && i < n; i++)
+        if (members[i] < 0 || members[i] >= sw->count)
+            return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "no member %ld (0 .. %ld)", members[i],
+                                sw->count - 1);
+    return HL_OK;
+}
+
+/* Start the threads (the caller's thread is the first worker); a thread
+ * that cannot start leaves its share to the others. */
+static hl_status run_threads(pool *p, int threads, hl_error *err)
+{
+    pthread_t *tid = hl_xcalloc((size_t)threads, sizeof *tid);
+    int started = 0;
+    for (int i = 1; i < threads; i++) {
+        if (pthread_create(&tid[started], NULL, work, p) != 0)
+            break;
+        started++;
+    }
+    work(p);
+    for (int i = 0; i < started; i++)
+        pthread_join(tid[i], NULL);
+    free(tid);
+    if (atomic_load(&p->stop))
+        return hl_error_set(err, HL_ESTOP, NULL, -1, 0,
+                            "the sweep stopped after %ld of %ld members", p->done, p->n);
+    return HL_OK;
+}
+
+hl_status hl_sweep_run(hl_sweep *sw, const long *members, long n, int threads, hl_sweep_fn fn,
+                       void *fn_arg, hl_progress_fn progress, void *progress_arg, hl_error *err)
+{
+    int st = check_members(sw, members, n, threads, err);
+    if (st != HL_OK)
+        return st;
+    pool p;
+    memset(&p, 0, sizeof p);
+    p.sw = sw;
+    p.members = members;
+    p.n = n;
+    p.fn = fn;
+    p.fn_arg = fn_arg;
+    p.progress = progress;
+    p.progress_arg = progress_arg;
+    atomic_init(&p.next, 0);
+    atomic_init(&p.stop, 0);
+    pthread_mutex_init(&p.lock, NULL);
+    cut_units(&p);
+    if (threads > p.nunits)
+        threads = p.nunits > 0 ? (int)p.nunits : 1;
+    st = run_threads(&p, threads, err);
+    pthread_mutex_destroy(&p.lock);
+    free(p.unit);
+    return st;
+}
