@@ -33,3 +33,20 @@ if(HAMLIE_GCCJIT AND GCCJIT_INCLUDE AND GCCJIT_LIB)
 else()
   message(STATUS "libgccjit: not used (hl_tape_jit reports HL_EUNSUP)")
 endif()
+
+# HDF5 (Debian: libhdf5-dev) writes the result files of `section` and
+# `sweep` (src/report/h5.c).  Its headers at build time; the library is not
+# linked but loaded on the first HDF5 file written (src/report/hdf5_api.c):
+# libhdf5 pulls in some 36 libraries every start-up would pay for.  The
+# file found here is tried after the soname (libhdf5_serial.so.103).
+pkg_check_modules(HDF5 REQUIRED hdf5)
+target_include_directories(hamlie_obj SYSTEM PRIVATE ${HDF5_INCLUDE_DIRS})
+find_library(HDF5_LIB NAMES hdf5_serial hdf5 HINTS ${HDF5_LIBRARY_DIRS})
+if(HDF5_LIB)
+  get_filename_component(HDF5_LIB_REAL ${HDF5_LIB} REALPATH)
+  set_property(SOURCE ${PROJECT_SOURCE_DIR}/src/report/hdf5_api.c APPEND PROPERTY
+               COMPILE_DEFINITIONS HAMLIE_HDF5_PATH="${HDF5_LIB_REAL}")
+endif()
+# the sweep's HDF5 file records the version that wrote it
+set_property(SOURCE ${PROJECT_SOURCE_DIR}/src/sweep/sweep_h5.c APPEND PROPERTY
+             COMPILE_DEFINITIONS HAMLIE_VERSION_TEXT="${PROJECT_VERSION}")

@@ -10,6 +10,7 @@ packages=(
   python3 python3-sympy                                 # the peer in bench/ (not needed to build)
   libgsl-dev                                            # the peer integrator in bench/
   libgccjit-12-dev                                      # optional: tapes compiled to machine code (hl_tape_jit)
+  libhdf5-dev                                           # HDF5 result files (section, sweep); loaded on first use
   python3-dev python3-numpy python3-mpmath python3-pytest  # the Python binding (python/) and its tests
   python3-nbclient python3-ipykernel python3-matplotlib  # the notebook docs/notebooks/tour.ipynb, run headless
   libopenmpi-dev openmpi-bin                            # optional: `mpirun hamlie sweep` (the plugin hamlie-mpi.so)

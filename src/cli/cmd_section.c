@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "cli/crossings.h"
+#include "hamlie/h5.h"
 #include "hamlie/section.h"
 #include "hamlie/sectionplot.h"
 
@@ -38,7 +39,8 @@ const char cmd_section_help[] =
     "  --tol TOL            the adaptive integrator's tolerance (default 1e-13)\n"
     "  --dt STEP            the fixed step of --scheme\n"
     "  --t-max T            each orbit's time bound (default 100 N, at least 1000)\n"
-    "  --out FILE           the CSV (default: standard output)\n"
+    "  --out FILE           the CSV (default: standard output); FILE.h5 an HDF5\n"
+    "                       file with the inputs and each orbit's status too\n"
     "  --plot DIR           draw DIR/section.png: the crossings of every orbit, a\n"
     "                       colour per orbit, in the plane of the other coordinate\n"
     "                       and its momentum\n"
@@ -130,6 +132,9 @@ static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
         return rc;
     if (s->formats != NULL && s->plot == NULL)
         return cli_usage(cmd, "--format is for the figure of --plot DIR");
+    hl_error err; /* without libhdf5, say so before computing */
+    if (hl_h5_is_h5_path(s->out) && hl_h5_available(&err) != HL_OK)
+        return cli_fail(&err);
     return -1;
 }
 
@@ -225,6 +230,7 @@ static int run_orbits(job *j, hl_section *sec, hl_run *run, const double *zs, in
                              &err) != HL_OK) {
             fprintf(stderr, "hamlie section: orbit %d failed after %ld crossings: %s\n", i,
                     j->table.n - before, err.msg);
+            crossings_orbit_failed(&j->table, i, &err);
             failed++;
         }
     }
@@ -295,6 +301,27 @@ static void put_json(hl_buf *out, hl_system *sys, const sec_opts *s, const cli_o
     hl_json_finish(&js);
 }
 
+/* --out FILE.h5: the crossings, the orbits and the inputs (crossings.c). */
+static int write_h5(const job *j, hl_system *sys, const sec_opts *s, const cli_opts *o, int M,
+                    const double *zs)
+{
+    crossings_h5_info info = {.command = "section",
+                              .H = o->H,
+                              .energy_input = s->energy,
+                              .surface = s->surface,
+                              .direction = crossings_direction_name(s->dir),
+                              .scheme = adaptive(s) ? "lie (adaptive Taylor)" : s->scheme,
+                              .located_on = adaptive(s) ? "taylor-polynomial" : "hermite-cubic",
+                              .energy = j->E,
+                              .tol = adaptive(s) ? s->tol : 0,
+                              .dt = adaptive(s) ? 0 : s->dt,
+                              .t_max = s->t_max,
+                              .norbits = M,
+                              .per_orbit = s->ncross,
+                              .seeds = zs};
+    return crossings_write_h5(&j->table, sys, s->out, &info);
+}
+
 /* The seeds: spread, or read from --init-file.  CLI_OK or the exit code. */
 static int seeds(double **zs, int *M, hl_section *sec, const sec_opts *s)
 {
@@ -351,7 +378,9 @@ static int section_body(hl_system *sys, sec_opts *s, const cli_opts *o)
     if (s->plot != NULL && (rc = draw(&j, sys, sec, s, M)) != CLI_OK)
         goto done;
     int to_stdout = s->out == NULL && o->format != CLI_JSON;
-    if (s->out != NULL || to_stdout)
+    if (s->out != NULL && hl_h5_is_h5_path(s->out))
+        rc = write_h5(&j, sys, s, o, M, zs);
+    else if (s->out != NULL || to_stdout)
         rc = crossings_write_csv(&j.table, sys, s->out != NULL ? s->out : "-", 1);
     if (rc == CLI_OK && !to_stdout) {
         hl_buf out;

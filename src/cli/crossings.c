@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "cli/crossings.h"
+#include "hamlie/h5.h"
 
 void crossings_init(crossings *c, int n2)
 {
@@ -17,6 +18,20 @@ void crossings_clear(crossings *c)
     free(c->rows);
     c->rows = NULL;
     c->n = c->cap = 0;
+    for (long i = 0; i < c->nfailed; i++)
+        free(c->failures[i].reason);
+    free(c->failures);
+    c->failures = NULL;
+    c->nfailed = 0;
+}
+
+void crossings_orbit_failed(crossings *c, long orbit, const hl_error *err)
+{
+    c->failures = hl_xrealloc(c->failures, (size_t)(c->nfailed + 1) * sizeof *c->failures);
+    struct crossings_failure *x = &c->failures[c->nfailed++];
+    x->orbit = orbit;
+    x->status = err->status != HL_OK ? (int)err->status : (int)HL_EINVAL;
+    x->reason = hl_xstrdup(err->msg[0] ? err->msg : hl_status_string(err->status));
 }
 
 static int width(const crossings *c)
@@ -92,6 +107,113 @@ int crossings_write_csv(const crossings *c, hl_system *sys, const char *path, in
     free(tmp);
     hl_buf_clear(&b);
     return rc;
+}
+
+/* ---- HDF5 ------------------------------------------------------------------ */
+
+/* Column j of the rows (every width-th value from j), NULL when there are none. */
+static const double *column(const crossings *c, int j)
+{
+    return c->n > 0 ? c->rows + j : NULL;
+}
+
+static void put_int_column(hl_h5 *f, const crossings *c, const char *name, int j, hl_error *err)
+{
+    int64_t *v = hl_xmalloc((size_t)(c->n > 0 ? c->n : 1) * sizeof *v);
+    for (long k = 0; k < c->n; k++)
+        v[k] = (int64_t)crossings_row(c, k)[j];
+    hl_h5_int64s(f, name, v, c->n, err);
+    free(v);
+}
+
+/* "crossings/orbit", "crossings/crossing", "crossings/t", one a variable, "crossings/H" */
+static void put_crossings(hl_h5 *f, const crossings *c, hl_system *sys, hl_error *err)
+{
+    char name[300];
+    hl_h5_group(f, "crossings", err);
+    put_int_column(f, c, "crossings/orbit", 0, err);
+    put_int_column(f, c, "crossings/crossing", 1, err);
+    hl_h5_doubles(f, "crossings/t", column(c, 2), c->n, width(c), err);
+    for (int i = 0; i < c->n2; i++) {
+        snprintf(name, sizeof name, "crossings/%s", cli_phase_name(sys, i));
+        hl_h5_doubles(f, name, column(c, 3 + i), c->n, width(c), err);
+    }
+    hl_h5_doubles(f, "crossings/H", column(c, 3 + c->n2), c->n, width(c), err);
+}
+
+/* "orbits/<var>0" the starts, "orbits/crossings", "orbits/status" (0 or the
+ * hl_status of its failure), "orbits/reason" ("" or the message) */
+static void put_orbits(hl_h5 *f, const crossings *c, hl_system *sys, const crossings_h5_info *info,
+                       hl_error *err)
+{
+    long M = info->norbits;
+    char name[300];
+    hl_h5_group(f, "orbits", err);
+    for (int i = 0; i < c->n2; i++) {
+        snprintf(name, sizeof name, "orbits/%s0", cli_phase_name(sys, i));
+        hl_h5_doubles(f, name, M > 0 ? info->seeds + i : NULL, M, c->n2, err);
+    }
+    int64_t *count = hl_xcalloc((size_t)(M > 0 ? M : 1), sizeof *count);
+    int64_t *status = hl_xcalloc((size_t)(M > 0 ? M : 1), sizeof *status);
+    const char **reason = hl_xcalloc((size_t)(M > 0 ? M : 1), sizeof *reason);
+    for (long k = 0; k < c->n; k++) {
+        long o = (long)crossings_row(c, k)[0];
+        if (o >= 0 && o < M)
+            count[o]++;
+    }
+    for (long k = 0; k < c->nfailed; k++)
+        if (c->failures[k].orbit >= 0 && c->failures[k].orbit < M) {
+            status[c->failures[k].orbit] = c->failures[k].status;
+            reason[c->failures[k].orbit] = c->failures[k].reason;
+        }
+    hl_h5_int64s(f, "orbits/crossings", count, M, err);
+    hl_h5_int64s(f, "orbits/status", status, M, err);
+    hl_h5_strings(f, "orbits/reason", reason, M, 0, err);
+    free(count), free(status), free(reason);
+}
+
+/* The root's attributes: the inputs, the version, the names of the columns. */
+static void put_inputs(hl_h5 *f, const crossings *c, hl_system *sys, const crossings_h5_info *info,
+                       hl_error *err)
+{
+    hl_h5_attr_string(f, NULL, "command", info->command, err);
+    hl_h5_attr_string(f, NULL, "hamlie_version", HAMLIE_VERSION, err);
+    hl_h5_attr_string(f, NULL, "H", info->H, err);
+    hl_h5_attr_double(f, NULL, "energy", info->energy, err);
+    hl_h5_attr_string(f, NULL, "energy_input", info->energy_input, err);
+    hl_h5_attr_string(f, NULL, "surface", info->surface, err);
+    hl_h5_attr_string(f, NULL, "direction", info->direction, err);
+    hl_h5_attr_string(f, NULL, "scheme", info->scheme, err);
+    hl_h5_attr_string(f, NULL, "located_on", info->located_on, err);
+    if (info->tol > 0)
+        hl_h5_attr_double(f, NULL, "tol", info->tol, err);
+    if (info->dt > 0)
+        hl_h5_attr_double(f, NULL, "dt", info->dt, err);
+    hl_h5_attr_double(f, NULL, "t_max", info->t_max, err);
+    hl_h5_attr_long(f, NULL, "orbits", info->norbits, err);
+    hl_h5_attr_long(f, NULL, "crossings_per_orbit", info->per_orbit, err);
+    const char **names = hl_xmalloc((size_t)(c->n2 + 4) * sizeof *names);
+    names[0] = "orbit", names[1] = "crossing", names[2] = "t";
+    for (int i = 0; i < c->n2; i++)
+        names[3 + i] = cli_phase_name(sys, i);
+    names[3 + c->n2] = "H";
+    hl_h5_attr_strings(f, NULL, "variables", names + 3, c->n2, err);
+    hl_h5_attr_strings(f, NULL, "columns", names, c->n2 + 4, err);
+    free(names);
+}
+
+int crossings_write_h5(const crossings *c, hl_system *sys, const char *path,
+                       const crossings_h5_info *info)
+{
+    hl_error err;
+    hl_error_clear(&err);
+    hl_h5 *f;
+    if (hl_h5_create(&f, path, &err) != HL_OK)
+        return cli_fail(&err);
+    put_inputs(f, c, sys, info, &err); /* errors are sticky: checked at the commit */
+    put_crossings(f, c, sys, &err);
+    put_orbits(f, c, sys, info, &err);
+    return hl_h5_commit(f, &err) == HL_OK ? CLI_OK : cli_fail(&err);
 }
 
 void crossings_json(const crossings *c, hl_json *j, const char *key, hl_system *sys, int with_orbit)
