@@ -69,42 +69,56 @@ mpi 1 4 "${BLOW[@]}" --threads 1 --out "$tmp/blow4.csv"
 same "$tmp/blow4.csv" "$tmp/blow-ref.csv"
 if [ "$(grep -c "failed" "$tmp/err")" -ge 1 ]; then ok; else bad "no failed member named"; fi
 
-# ---- HDF5 (when this hamlie writes it): the same bytes too ----------------
-if "$HAMLIE" "${PEND[@]}" --threads 2 --out "$tmp/ref.h5" 2>"$tmp/h5err"; then
-    mpi 0 4 "${PEND[@]}" --threads 1 --out "$tmp/np4.h5"
-    same "$tmp/np4.h5" "$tmp/ref.h5"
-else
-    echo "note: no HDF5 sweep files here: $(head -1 "$tmp/h5err")"
-fi
-
 # ---- mpirun interrupted, then --resume under mpirun ------------------------
 LONG=(sweep -H 'p^2/2 - cos(q)' --grid 'q=-3:3:24,p=-2:2:20' --scheme stormer-verlet-kdk,rk4
       --dt 0.01,0.005 --t 20 --quiet)
-run 0 "${LONG[@]}" --threads 2 --out "$tmp/long-ref.csv"
-out=$tmp/long.csv
-env --default-signal=INT mpirun -np 3 "$HAMLIE" "${LONG[@]}" --threads 1 --out "$out" >"$tmp/out" 2>"$tmp/err" &
-pid=$!
-# interrupted once a few results are in the journal (header 24 bytes)
-for _ in $(seq 600); do
-    [ "$(stat -c %s "$out.journal" 2>/dev/null || echo 0)" -gt 2000 ] && break
-    sleep 0.05
-done
-kill -INT "$pid" 2>/dev/null
-for _ in $(seq 300); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
-kill -KILL "$pid" 2>/dev/null
-wait "$pid"
-rc=$?
-if [ "$rc" -ne 0 ]; then ok; else bad "mpirun interrupted exited 0"; fi
-if [ ! -e "$out" ] && [ -s "$out.journal" ]; then ok; else
-    bad "interrupted: want the journal and no file ($(ls "$tmp"))"; sed 's/^/    /' "$tmp/err" >&2; fi
-if ls "$tmp" | grep -q "^long.csv.*tmp"; then bad "a temporary file left: $(ls "$tmp")"; else ok; fi
-# a journal left: a fresh start is refused (said once, by rank 0), --resume finishes
-mpi 2 2 "${LONG[@]}" --threads 1 --out "$out"
-if [ "$(grep -c "journal" "$tmp/err")" -eq 1 ]; then ok; else
-    bad "want one message naming the journal"; sed 's/^/    /' "$tmp/err" >&2; fi
-mpi 0 2 "${LONG[@]}" --threads 1 --out "$out" --resume
-same "$out" "$tmp/long-ref.csv"
-if [ ! -e "$out.journal" ]; then ok; else bad "the journal outlived the finished sweep"; fi
+
+# interrupted_resume EXT: the LONG sweep to long.EXT under mpirun -np 3,
+# interrupted (SIGINT to mpirun) once results are in the journal; then a
+# fresh start is refused (said once, by rank 0) and --resume under
+# mpirun -np 2 finishes the same file as the threaded run
+interrupted_resume() {
+    local ext=$1 out=$tmp/long.$1 i
+    run 0 "${LONG[@]}" --threads 2 --out "$tmp/long-ref.$ext"
+    # a script's background job starts with SIGINT ignored: env gives the default
+    env --default-signal=INT mpirun -np 3 "$HAMLIE" "${LONG[@]}" --threads 1 --out "$out" \
+        >"$tmp/out" 2>"$tmp/err" &
+    local pid=$!
+    for i in $(seq 600); do # a few results in (the header is 24 bytes)
+        [ "$(stat -c %s "$out.journal" 2>/dev/null || echo 0)" -gt 2000 ] && break
+        sleep 0.05
+    done
+    kill -INT "$pid" 2>/dev/null
+    for i in $(seq 300); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+    kill -KILL "$pid" 2>/dev/null
+    wait "$pid"
+    local rc=$?
+    if [ "$rc" -ne 0 ]; then ok; else bad "$ext: mpirun interrupted exited 0 (finished?)"; fi
+    if [ ! -e "$out" ] && [ -s "$out.journal" ]; then ok; else
+        bad "$ext interrupted: want the journal and no file ($(ls "$tmp"))"
+        sed 's/^/    /' "$tmp/err" >&2
+    fi
+    if ls "$tmp" | grep -q "^long\.$ext..*tmp"; then bad "a temporary file left: $(ls "$tmp")"
+    else ok; fi
+    mpi 2 2 "${LONG[@]}" --threads 1 --out "$out"
+    if [ "$(grep -c "journal" "$tmp/err")" -eq 1 ]; then ok; else
+        bad "want one message naming the journal"; sed 's/^/    /' "$tmp/err" >&2; fi
+    mpi 0 2 "${LONG[@]}" --threads 1 --out "$out" --resume
+    same "$out" "$tmp/long-ref.$ext"
+    if [ ! -e "$out.journal" ]; then ok; else bad "the journal outlived the finished sweep"; fi
+}
+interrupted_resume csv
+
+# ---- HDF5 (when this hamlie writes it): the same bytes too ----------------
+if "$HAMLIE" "${PEND[@]}" --threads 2 --out "$tmp/ref.h5" 2>"$tmp/h5err"; then
+    for np in 1 4; do
+        mpi 0 $np "${PEND[@]}" --threads 1 --out "$tmp/np$np.h5"
+        same "$tmp/np$np.h5" "$tmp/ref.h5"
+    done
+    interrupted_resume h5
+else
+    echo "note: no HDF5 sweep files here: $(head -1 "$tmp/h5err")"
+fi
 
 # ---- the plugin missing: a clear error, nothing written ---------------------
 HAMLIE_MPI_PLUGIN=/nonexistent/hamlie-mpi.so run 2 "${PEND[@]}" --mpi --out "$tmp/none.csv"
