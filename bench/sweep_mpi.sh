@@ -8,7 +8,7 @@
 # Then rank 0's intake: bench-sweep_mpi_rate (rows per CPU second).
 # Usage: bench/sweep_mpi.sh [build-dir] [reps]    (default: build, 3)
 #   SWEEP_ARGS='...' to change the sweep (default: 10^4 members of the
-#   pendulum, Stormer-Verlet and RK4, t = 100)
+#   pendulum, Stormer-Verlet and RK4, t = 1000)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
@@ -20,7 +20,7 @@ export HAMLIE_CACHE_DIR=${HAMLIE_CACHE_DIR:-$build/bench-cache}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 # shellcheck disable=SC2206
-args=(${SWEEP_ARGS:-sweep -H 'p^2/2-cos(q)' --grid q=-3:3:50,p=-2:2:50 --scheme stormer-verlet-kdk,rk4 --dt 0.1 --t 100 --quiet})
+args=(${SWEEP_ARGS:-sweep -H 'p^2/2-cos(q)' --grid q=-3:3:100,p=-2:2:50 --scheme stormer-verlet-kdk,rk4 --dt 0.1 --t 1e3 --quiet})
 
 echo "# bench/sweep_mpi.sh  $(date -u '+%F %T UTC')  commit $(git rev-parse --short HEAD)"
 echo "# reps: $reps  load: $(cut -d' ' -f1-3 /proc/loadavg)  cpus: $(nproc)  $(mpirun --version | head -1)"

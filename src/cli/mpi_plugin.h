@@ -17,8 +17,9 @@
  * job.store, one call at a time, on rank 0.  Rank 0 also computes chunks
  * itself on a thread of its own unless job.master_idle (its main thread
  * only serves, sleeping between polls, so it does not burn a core).  The
- * other ranks compute what they are given with job.compute and ask again,
- * until the master answers "done" or "stop".
+ * other ranks compute what they are given with job.compute and ask again
+ * (two requests open each: the next chunk is there when one is done),
+ * until the master answers "done", or ends the job after a stop.
  *
  * A rank's rows travel as bytes: the ranks must share the double format
  * and byte order (one cluster); each request carries the worker's sweep
