@@ -136,6 +136,13 @@ typedef struct master {
     int failed;
     char msg[256];
     int local_running;
+    /* the master's sends under way (main thread only): it never waits for
+     * a worker, which may be busy with a chunk while its next one (the
+     * answer to its second open request) is sent, and may itself be
+     * sending results: two blocking sends would wait for each other */
+    MPI_Request *sends;
+    int64_t **send_bufs;
+    int nsends, capsends;
 } master;
 
 /* The next chunk for a rank with `threads` threads: todo[*first ..
@@ -224,28 +231,62 @@ static void *local_loop(void *arg)
     return NULL;
 }
 
+/* Sends that have completed are forgotten, their buffers freed. */
+static void reap_sends(master *m)
+{
+    for (int i = 0; i < m->nsends;) {
+        int done = 0;
+        MPI_Test(&m->sends[i], &done, MPI_STATUS_IGNORE);
+        if (!done) {
+            i++;
+            continue;
+        }
+        free(m->send_bufs[i]);
+        m->nsends--;
+        m->sends[i] = m->sends[m->nsends];
+        m->send_bufs[i] = m->send_bufs[m->nsends];
+    }
+}
+
+/* A chunk (buf: n members, owned from here on; NULL and 0 for "done") on
+ * its way to dest without waiting; 0, or -1 without memory. */
+static int post_send(master *m, int dest, int64_t *buf, long n)
+{
+    if (m->nsends == m->capsends) {
+        int cap = m->capsends ? 2 * m->capsends : 16;
+        MPI_Request *r = realloc(m->sends, (size_t)cap * sizeof *r);
+        if (r != NULL)
+            m->sends = r;
+        int64_t **b = realloc(m->send_bufs, (size_t)cap * sizeof *b);
+        if (b != NULL)
+            m->send_bufs = b;
+        if (r == NULL || b == NULL) {
+            free(buf);
+            return -1;
+        }
+        m->capsends = cap;
+    }
+    MPI_Isend(buf, (int)n, MPI_INT64_T, dest, buf != NULL ? TAG_CHUNK : TAG_DONE, comm,
+              &m->sends[m->nsends]);
+    m->send_bufs[m->nsends++] = buf;
+    return 0;
+}
+
 static int send_chunk(master *m, int dest, int threads)
 {
     long first;
     pthread_mutex_lock(&m->lock);
     long n = next_chunk(m, threads, &first);
     pthread_mutex_unlock(&m->lock);
-    if (n == 0) {
-        MPI_Send(NULL, 0, MPI_BYTE, dest, TAG_DONE, comm);
-        return 0;
-    }
-    int64_t *members = malloc((size_t)n * sizeof *members);
-    if (members == NULL) {
+    int64_t *members = n > 0 ? malloc((size_t)n * sizeof *members) : NULL;
+    for (long i = 0; members != NULL && i < n; i++)
+        members[i] = m->job->todo[first + i];
+    if ((n > 0 && members == NULL) || post_send(m, dest, members, n) != 0) {
         pthread_mutex_lock(&m->lock);
         master_fail(m, "no memory for a chunk of %ld members", n);
         pthread_mutex_unlock(&m->lock);
-        return 1;
     }
-    for (long i = 0; i < n; i++)
-        members[i] = m->job->todo[first + i];
-    MPI_Send(members, (int)n, MPI_INT64_T, dest, TAG_CHUNK, comm);
-    free(members);
-    return 1;
+    return n > 0;
 }
 
 /* A worker's request: its results stored, its next chunk sent.  Returns
@@ -314,6 +355,7 @@ static int serve_one(master *m, bytes *in, double *row, int *source)
 {
     int flag = 0, count = 0;
     MPI_Status st;
+    reap_sends(m);
     MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, comm, &flag, &st);
     if (!flag) {
         struct timespec ts = {0, POLL_NS};
@@ -379,6 +421,16 @@ static int run_master(const cli_mpi_job *job, int size, char *msg, size_t msgsiz
         }
     if (local_started)
         pthread_join(local, NULL);
+    /* every worker takes its answers before it is through; after a stop
+     * the sends may never end (the job is ended by an abort): their
+     * buffers are left to it, MPI may still read them */
+    if (!m.stop) {
+        MPI_Waitall(m.nsends, m.sends, MPI_STATUSES_IGNORE);
+        for (int i = 0; i < m.nsends; i++)
+            free(m.send_bufs[i]);
+        free(m.sends);
+        free(m.send_bufs);
+    }
     free(row);
     free(in.p);
     free(dones);
@@ -516,8 +568,19 @@ static int plugin_run(const cli_mpi_job *job, char *msg, size_t msgsize)
     return outcome;
 }
 
+/* The ranks done first wait here for rank 0 to write the file: in a
+ * barrier polled with pauses, since MPI_Finalize's own wait spins (10 %
+ * of a core here) and the ranks may share the node with others' work. */
 static void plugin_finalize(void)
 {
+    MPI_Request req;
+    int done = 0;
+    MPI_Ibarrier(MPI_COMM_WORLD, &req);
+    while (!done) {
+        MPI_Test(&req, &done, MPI_STATUS_IGNORE);
+        if (!done)
+            nanosleep(&(struct timespec){0, POLL_NS}, NULL);
+    }
     MPI_Finalize();
 }
 

@@ -2,12 +2,12 @@
  * sweep: a member's row is bits drawn from its index (NaNs, -0, subnormals
  * included: rows must travel bit for bit), every 37th member fails with a
  * reason naming it, and members take a random while so that chunks finish
- * out of order.  Run under mpirun with 1, 2 and 4 ranks (cmake/mpi.cmake).
- *   t-protocol PLUGIN          every check below
- *   t-protocol PLUGIN stop     rank 0 stops after 50 results: STOPPED, then abort(0)
- *   t-protocol PLUGIN mismatch the last rank runs "another sweep": FAILED, abort(0)
- * Rank 0 checks: every member asked for stored exactly once, its row,
- * status and reason exact, none other stored. */
+ * out of order; enough members that chunks exceed MPI's eager limit (a
+ * send then waits for its receive: the protocol must not deadlock).  Run under mpirun with 1, 2 and
+ * 4 ranks (cmake/mpi.cmake). t-protocol PLUGIN          every check below t-protocol PLUGIN stop
+ * rank 0 stops after 50 results: STOPPED, then abort(0) t-protocol PLUGIN mismatch the last rank
+ * runs "another sweep": FAILED, abort(0) Rank 0 checks: every member asked for stored exactly once,
+ * its row, status and reason exact, none other stored. */
 #include <dlfcn.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -17,7 +17,7 @@
 
 #include "cli/mpi_plugin.h"
 
-#define NMEMBERS 3000L
+#define NMEMBERS 30000L /* chunks of thousands: past MPI's eager limit */
 #define NCOLS 7
 #define GROUP 6L /* e.g. 3 schemes x 2 steps */
 
@@ -69,9 +69,10 @@ static int fake_compute(void *arg, const long *members, long n, hl_sweep_fn emit
     fake *f = arg;
     double row[NCOLS];
     for (long i = 0; i < n; i++) {
-        struct timespec ts = {0,
-                              (long)(splitmix64((uint64_t)members[i] ^ (uint64_t)f->rank) % 20000)};
-        nanosleep(&ts, NULL);
+        uint64_t draw = splitmix64((uint64_t)members[i] ^ (uint64_t)f->rank);
+        struct timespec ts = {0, (long)(draw % 40000)};
+        if (draw % 8 == 0) /* some members take a while: out of order */
+            nanosleep(&ts, NULL);
         hl_sweep_result r = {.member = members[i], .status = HL_OK, .row = row};
         member_row(members[i], row);
         if (member_fails(members[i])) {
