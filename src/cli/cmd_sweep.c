@@ -12,6 +12,7 @@
 
 #include "cli/cli.h"
 #include "cli/mpi_plugin.h"
+#include "hamlie/h5.h"
 #include "hamlie/sweep.h"
 #include "hamlie/sweepplot.h"
 
@@ -181,6 +182,9 @@ static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
         return cli_usage(cmd, "--resume continues the sweep of --out FILE: name it");
     if (s->formats != NULL && s->plot == NULL)
         return cli_usage(cmd, "--format is for the maps of --plot DIR");
+    hl_error err; /* without libhdf5, say so before computing (and journaling) */
+    if (hl_h5_is_h5_path(s->out) && hl_h5_available(&err) != HL_OK)
+        return cli_fail(&err);
     return check_numbers(s, cmd);
 }
 
@@ -223,18 +227,6 @@ static int fail_in_file(hl_error *err, const char *path, const char *text)
     int rc = cli_fail(err);
     free(one);
     return rc;
-}
-
-/* Which option an error's text came from, said before it. */
-static void name_option(hl_error *err, const hl_sweep_spec *spec)
-{
-    if (err->src == NULL)
-        return;
-    const char *texts[] = {spec->grid, spec->random, spec->params, spec->schemes, spec->dts};
-    const char *names[] = {"--grid", "--random", "--param", "--scheme", "--dt"};
-    for (int i = 0; i < 5; i++)
-        if (texts[i] != NULL && err->src == texts[i])
-            hl_error_prefix(err, "in %s", names[i]);
 }
 
 /* ---- running ---------------------------------------------------------------- */
@@ -383,8 +375,9 @@ static int sweep_body(hl_sweep *sw, const sweep_opts *s, const cli_opts *o)
         hl_sweep_journal_open(&k.journal, sw, s->out, s->resume, k.tab, &err) != HL_OK)
         rc = cli_fail(&err);
     if (rc < 0) /* under mpirun, rank 0 hands the members out instead */
-        rc = cli_sweep_mpi_active() ? cli_sweep_mpi_serve(sw, k.tab, k.journal, s->out, o->progress)
-                                    : run_all(sw, &k, s, o);
+        rc = cli_sweep_mpi_active()
+                 ? cli_sweep_mpi_serve(sw, k.tab, k.journal, s->out, o->progress)
+                 : run_all(sw, &k, s, o);
     if (rc < 0 && hl_sweep_write(sw, k.tab, s->out != NULL ? s->out : "-", &err) != HL_OK)
         rc = cli_fail(&err);
     if (rc < 0 && s->plot != NULL)
@@ -403,12 +396,26 @@ int cmd_sweep(int argc, char **argv, const cli_command *cmd)
     memset(&s, 0, sizeof s);
     memset(&o, 0, sizeof o);
     /* in found_opt's order: values, flags, then --param */
-    static const cli_own own[] = {
-        {"--grid", 0},   {"--init-file", 0}, {"--random", 0},       {"--count", 0},
-        {"--seed", 0},   {"--scheme", 0},    {"--dt", 0},           {"--t", 0},
-        {"--tol", 0},    {"--threads", 0},   {"--out", 0},          {"--plot", 0},
-        {"--format", 0}, {"--reference", 1}, {"--no-reference", 1}, {"--order", 1},
-        {"--chaos", 1},  {"--resume", 1},    {"--mpi", 1},          {"--param", CLI_OWN_REPEAT}};
+    static const cli_own own[] = {{"--grid", 0},
+                                  {"--init-file", 0},
+                                  {"--random", 0},
+                                  {"--count", 0},
+                                  {"--seed", 0},
+                                  {"--scheme", 0},
+                                  {"--dt", 0},
+                                  {"--t", 0},
+                                  {"--tol", 0},
+                                  {"--threads", 0},
+                                  {"--out", 0},
+                                  {"--plot", 0},
+                                  {"--format", 0},
+                                  {"--reference", 1},
+                                  {"--no-reference", 1},
+                                  {"--order", 1},
+                                  {"--chaos", 1},
+                                  {"--resume", 1},
+                                  {"--mpi", 1},
+                                  {"--param", CLI_OWN_REPEAT}};
     static const cli_begin_spec spec = {own,        (int)(sizeof own / sizeof own[0]), found_opt,
                                         check_opts, CLI_OPT_H | CLI_OPT_PROGRESS,      64};
     char **av;
@@ -439,10 +446,8 @@ int cmd_sweep(int argc, char **argv, const cli_command *cmd)
     if (rc < 0 && hl_sweep_new(&sw, &sp, &err) != HL_OK) {
         if (csv != NULL && err.src == csv)
             rc = fail_in_file(&err, s.init_file, csv);
-        else {
-            name_option(&err, &sp);
+        else /* the message names the field: "grid: ...", "schemes: ..." */
             rc = cli_fail(&err);
-        }
     }
     if (rc < 0) /* under mpirun: the ranks but 0 compute in there */
         rc = cli_sweep_mpi_begin(sw, s.mpi, &s.threads, s.threads_s != NULL);

@@ -27,6 +27,7 @@ typedef struct paramset_ctx {
 struct sweep_worker {
     const hl_sweep *sw;
     paramset_ctx *ctx; /* nparamsets, built lazily */
+    int nbuilt;
     double *z0;
     /* the chaos indicators of the last (point, paramset) */
     long chaos_point, chaos_paramset;
@@ -99,10 +100,21 @@ static hl_status build_ctx(paramset_ctx *c, const hl_sweep *sw, long paramset, h
     return st;
 }
 
+/* A worker keeps at most this many paramsets built (a system, its schemes'
+ * runs, a chaos object each): a sweep over thousands of parameter values
+ * then rebuilds as it goes instead of holding them all. */
+#define KEPT_PARAMSETS 16
+
 static paramset_ctx *get_ctx(sweep_worker *w, long paramset)
 {
     paramset_ctx *c = &w->ctx[paramset];
+    if (!c->built && w->nbuilt >= KEPT_PARAMSETS) {
+        for (long i = 0; i < w->sw->nparamsets; i++)
+            ctx_clear(&w->ctx[i], w->sw->nschemes);
+        w->nbuilt = 0;
+    }
     if (!c->built) {
+        w->nbuilt++;
         hl_error err;
         hl_error_clear(&err);
         c->built = 1;

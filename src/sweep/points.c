@@ -102,6 +102,10 @@ static int split_colons(const char *text, int a, int len, int *pa, int *pl)
     return k;
 }
 
+/* The values of one name are kept (80 MB at most): a sweep of more points
+ * than this along one axis would not finish anyway. */
+#define SWEEP_MAX_AXIS_VALUES 10000000L
+
 /* The count n of a:b:n: a whole number >= 0. */
 static hl_status range_count(long *n, const char *text, int a, int len, const char *what,
                              hl_error *err)
@@ -131,9 +135,9 @@ hl_status sweep_axis_values(sweep_axis *ax, const char *text, int a, int len, co
     int st = sweep_number(&lo, text, pa[0], pl[0], what, err);
     if (st == HL_OK && k == 3 && (st = sweep_number(&hi, text, pa[1], pl[1], what, err)) == HL_OK)
         st = range_count(&n, text, pa[2], pl[2], what, err);
-    if (st == HL_OK && ax->n + n > HL_SWEEP_MAX_MEMBERS)
-        st = hl_error_set(err, HL_ELIMIT, text, a, len, "%s: more than %ld values", what,
-                          HL_SWEEP_MAX_MEMBERS);
+    if (st == HL_OK && ax->n + n > SWEEP_MAX_AXIS_VALUES)
+        st = hl_error_set(err, HL_ELIMIT, text, a, len, "%s: more than %ld values of one name",
+                          what, SWEEP_MAX_AXIS_VALUES);
     if (st != HL_OK)
         return st;
     ax->v = hl_xrealloc(ax->v, (size_t)(ax->n + n) * sizeof *ax->v);

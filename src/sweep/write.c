@@ -7,16 +7,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "base/buf.h"
+#include "hamlie/h5.h"
 #include "sweep/sweep_impl.h"
-
-static int ends_with(const char *s, const char *tail)
-{
-    size_t n = strlen(s), k = strlen(tail);
-    return n >= k && strcmp(s + n - k, tail) == 0;
-}
 
 /* A CSV field: quoted when it holds a comma, a quote or a line break. */
 static void put_field(hl_buf *b, const char *s)
@@ -96,6 +92,11 @@ hl_status sweep_write_csv(const hl_sweep *sw, const hl_sweep_table *tab, const c
     char *tmp = hl_xmalloc(n);
     snprintf(tmp, n, "%s.tmpXXXXXX", path);
     int fd = mkstemp(tmp);
+    if (fd >= 0) { /* mkstemp's 0600 would keep the file from its owner's group */
+        mode_t mask = umask(0);
+        umask(mask);
+        fchmod(fd, 0666 & ~mask);
+    }
     FILE *fp = fd >= 0 ? fdopen(fd, "w") : NULL;
     int st = HL_OK;
     if (fp == NULL) {
@@ -129,7 +130,7 @@ hl_status hl_sweep_write(const hl_sweep *sw, const hl_sweep_table *tab, const ch
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
                             "the table has %ld of the sweep's %ld members: nothing written",
                             hl_sweep_table_done(tab), sw->count);
-    if (ends_with(path, ".h5"))
+    if (hl_h5_is_h5_path(path)) /* .h5 or .hdf5 */
         return hl_sweep_write_h5(sw, tab, path, err);
     return sweep_write_csv(sw, tab, path, err);
 }

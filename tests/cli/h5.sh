@@ -8,6 +8,10 @@
 #  - without libhdf5 ($HAMLIE_HDF5_LIB=/nonexistent): exit 2, the reason,
 #    nothing written (no file, no temporary, no figure folder);
 #  - an unwritable output: exit 2, the path named, nothing left;
+#  - sweep --out f.h5: summary/<column>, status and reason equal the sweep's
+#    CSV (members that blow up included); the same file with 1 and 2
+#    threads, and after a kill -9 mid-sweep and --resume (cmp); without
+#    libhdf5: exit 2 before computing, no file and no journal;
 #  - start-up: `lie` and a CSV section never load libhdf5; --out f.h5 does.
 # usage (from the repo root): bash tests/cli/h5.sh path/to/hamlie
 set -u
@@ -91,6 +95,59 @@ HAMLIE_HDF5_LIB=/nonexistent/libhdf5.so run 0 "${SEC[@]}" --out nolib.csv
 run 2 "${SEC[@]}" --out no-such-dir/x.h5
 err_has "cannot write 'no-such-dir/x.h5'"
 if [ -e no-such-dir ]; then bad "no-such-dir was made"; else ok; fi
+
+# ---- a sweep: the summary equals the CSV, members that failed included ----
+SW=(sweep -H 'p^2/2 - q^4' --grid 'q=0.1:3:4,p=-0.5:0.5:3' --scheme euler,stormer-verlet-kdk
+    --dt 0.1,0.05 --t 10 --quiet)
+run 1 "${SW[@]}" --out sw.csv --threads 1
+run 1 "${SW[@]}" --out sw.h5 --threads 1
+run 1 "${SW[@]}" --out sw2.h5 --threads 2
+if cmp -s sw.h5 sw2.h5; then ok; else bad "sweep.h5 with 1 and 2 threads differ"; fi
+pycheck '
+rows = list(csv.DictReader(open(sys.argv[1])))
+f = h5py.File(sys.argv[2], "r")
+s, a = f["summary"], f.attrs
+cols = list(a["columns"])
+assert list(rows[0].keys()) == cols + ["status", "reason"]
+assert a["command"] == "sweep" and a["H"] == "p^2/2 - q^4" and a["grid"] == "q=0.1:3:4,p=-0.5:0.5:3"
+assert list(a["schemes"]) == ["euler", "stormer-verlet-kdk"] and a["dts"] == "0.1,0.05"
+assert a["t"] == 10 and a["members"] == len(rows) == 48 and len(a["fingerprint"]) == 16
+for c in cols:
+    got = s[c][:]
+    if c == "scheme":
+        want = np.array([list(a["schemes"]).index(r[c]) for r in rows])
+    else:
+        want = np.array([float(r[c]) for r in rows])
+    assert got.shape == (48,) and np.array_equal(got, want, equal_nan=True), (c, got[:4], want[:4])
+assert s["member"].dtype == np.int64 and s["max_dH"].dtype == np.float64
+names = list(a["status_names"])
+st, why = s["status"][:], s["reason"].asstr()[:]
+assert [names[k] for k in st] == [r["status"] for r in rows]
+assert list(why) == [r["reason"] for r in rows]
+assert 0 < sum(st != 0) < 48 and all((st != 0) == (why != ""))   # some blew up, not all
+' sw.csv sw.h5
+
+# ---- killed mid-sweep, resumed: the same file as an uninterrupted run ----
+LONG=(sweep -H 'p^2/2 - cos(q)' --grid 'q=-3:3:30,p=-2:2:30' --scheme stormer-verlet-kdk,rk4
+      --dt 0.01 --t 100 --threads 2 --quiet)
+run 0 "${LONG[@]}" --out whole.h5
+"$HAMLIE" "${LONG[@]}" --out part.h5 2>/dev/null &
+pid=$!
+for _ in $(seq 600); do # until some members are in the journal
+    [ "$(stat -c %s part.h5.journal 2>/dev/null || echo 0)" -gt 3000 ] && break
+    sleep 0.02
+done
+kill -KILL $pid 2>/dev/null
+wait $pid 2>/dev/null
+if [ -e part.h5 ]; then bad "the sweep finished before the kill: make it longer"; else ok; fi
+run 0 "${LONG[@]}" --out part.h5 --resume
+if cmp -s whole.h5 part.h5; then ok; else bad "a resumed sweep's HDF5 file differs from a whole run's"; fi
+if [ -e part.h5.journal ]; then bad "the journal was left after the resumed sweep"; else ok; fi
+
+# ---- a sweep without libhdf5: refused before computing, nothing written ----
+HAMLIE_HDF5_LIB=/nonexistent/libhdf5.so run 2 "${SW[@]}" --out sw-nolib.h5
+err_has "/nonexistent/libhdf5.so not found: install libhdf5"
+if ls sw-nolib* >/dev/null 2>&1; then bad "without libhdf5 the sweep left $(ls sw-nolib*)"; else ok; fi
 
 # ---- start-up: only an HDF5 output loads libhdf5 ----
 loaded() { cat "$tmp"/ld.* 2>/dev/null | grep -E 'file=[^ ]*('"$1"')[^ ]* +\[0\]; +(needed|dynamically loaded)' -q; }
