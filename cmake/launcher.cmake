@@ -9,6 +9,7 @@ include(GNUInstallDirs)
 file(GLOB CLI_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/cli/*.c)
 set(LAUNCH_SOURCES ${PROJECT_SOURCE_DIR}/src/cli/launch.c ${PROJECT_SOURCE_DIR}/src/cli/launch_gen.c)
 list(REMOVE_ITEM CLI_SOURCES ${LAUNCH_SOURCES})
+list(REMOVE_ITEM CLI_SOURCES ${PROJECT_SOURCE_DIR}/src/cli/mpi_plugin.c) # hamlie-mpi.so's (mpi.cmake)
 
 add_library(hamlie_cli_obj OBJECT ${CLI_SOURCES})
 target_link_libraries(hamlie_cli_obj PRIVATE hamlie_static) # its include paths

@@ -13,6 +13,7 @@ packages=(
   libhdf5-dev                                           # HDF5 result files (section, sweep); loaded on first use
   python3-dev python3-numpy python3-mpmath python3-pytest  # the Python binding (python/) and its tests
   python3-nbclient python3-ipykernel python3-matplotlib  # the notebook docs/notebooks/tour.ipynb, run headless
+  libopenmpi-dev openmpi-bin                            # optional: `mpirun hamlie sweep` (the plugin hamlie-mpi.so)
 )
 
 missing=()

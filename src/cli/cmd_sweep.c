@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "cli/cli.h"
+#include "cli/mpi_plugin.h"
 #include "hamlie/h5.h"
 #include "hamlie/sweep.h"
 #include "hamlie/sweepplot.h"
@@ -46,7 +47,10 @@ const char cmd_sweep_help[] =
     "  --order              the observed order from dt and dt/2 (runs each member\n"
     "                       twice, against the reference)\n"
     "  --chaos              MEGNO <Y> and the mLCE of each point at --t\n"
-    "  --threads N          threads (default: every core)\n"
+    "  --threads N          threads (default: every core; under mpirun, the cores\n"
+    "                       shared among the node's ranks)\n"
+    "  --mpi                spread the members over the ranks of an MPI job (the\n"
+    "                       default under mpirun; docs/sweep-at-scale.md)\n"
     "  --out FILE           FILE.csv or FILE.h5 (default: CSV on standard output)\n"
     "  --resume             continue an interrupted sweep from FILE.journal\n"
     "  --plot DIR           for a grid in two variables, a map per scheme and step\n"
@@ -70,7 +74,7 @@ typedef struct sweep_opts {
     const char *grid, *init_file, *random, *count_s, *seed_s, *scheme, *dt_s, *t_s, *tol_s;
     const char *threads_s, *out, *plot, *formats;
     char *params; /* every --param joined with ',' */
-    int reference, no_reference, order, chaos, resume;
+    int reference, no_reference, order, chaos, resume, mpi;
     long count, threads;
     unsigned long long seed;
     double t, tol;
@@ -82,10 +86,10 @@ static void found_opt(void *arg, int k, const char *value)
     const char **slot[] = {&s->grid,   &s->init_file, &s->random, &s->count_s, &s->seed_s,
                            &s->scheme, &s->dt_s,      &s->t_s,    &s->tol_s,   &s->threads_s,
                            &s->out,    &s->plot,      &s->formats};
-    int *flag[] = {&s->reference, &s->no_reference, &s->order, &s->chaos, &s->resume};
+    int *flag[] = {&s->reference, &s->no_reference, &s->order, &s->chaos, &s->resume, &s->mpi};
     if (k < 13)
         *slot[k] = value;
-    else if (k < 18)
+    else if (k < 19)
         *flag[k - 13] = 1;
     else { /* --param, repeatable: joined as one list */
         size_t n = (s->params ? strlen(s->params) + 1 : 0) + strlen(value) + 1;
@@ -374,8 +378,10 @@ static int sweep_body(hl_sweep *sw, const sweep_opts *s, const cli_opts *o)
     if (s->out != NULL &&
         hl_sweep_journal_open(&k.journal, sw, s->out, s->resume, k.tab, &err) != HL_OK)
         rc = cli_fail(&err);
-    if (rc < 0)
-        rc = run_all(sw, &k, s, o);
+    if (rc < 0) /* under mpirun, rank 0 hands the members out instead */
+        rc = cli_sweep_mpi_active()
+                 ? cli_sweep_mpi_serve(sw, k.tab, k.journal, s->out, o->progress)
+                 : run_all(sw, &k, s, o);
     if (rc < 0 && hl_sweep_write(sw, k.tab, s->out != NULL ? s->out : "-", &err) != HL_OK)
         rc = cli_fail(&err);
     if (rc < 0 && s->plot != NULL)
@@ -412,6 +418,7 @@ int cmd_sweep(int argc, char **argv, const cli_command *cmd)
                                   {"--order", 1},
                                   {"--chaos", 1},
                                   {"--resume", 1},
+                                  {"--mpi", 1},
                                   {"--param", CLI_OWN_REPEAT}};
     static const cli_begin_spec spec = {own,        (int)(sizeof own / sizeof own[0]), found_opt,
                                         check_opts, CLI_OPT_H | CLI_OPT_PROGRESS,      64};
@@ -446,8 +453,10 @@ int cmd_sweep(int argc, char **argv, const cli_command *cmd)
         else /* the message names the field: "grid: ...", "schemes: ..." */
             rc = cli_fail(&err);
     }
+    if (rc < 0) /* under mpirun: the ranks but 0 compute in there */
+        rc = cli_sweep_mpi_begin(sw, s.mpi, &s.threads, s.threads_s != NULL);
     if (rc < 0)
-        rc = sweep_body(sw, &s, &o);
+        rc = cli_sweep_mpi_end(sweep_body(sw, &s, &o));
     hl_sweep_free(sw);
     free(csv);
     free(s.params);
