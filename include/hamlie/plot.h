@@ -75,7 +75,9 @@ typedef enum hl_draw {
     HL_DRAW_DOTS,       /* filled circles, one per point */
     HL_DRAW_SQUARES,    /* filled squares: a second scheme on one figure */
     HL_DRAW_TRIANGLES,  /* filled triangles: a third */
-    HL_DRAW_DIAMONDS    /* filled diamonds: a fourth */
+    HL_DRAW_DIAMONDS,   /* filled diamonds: a fourth */
+    HL_DRAW_POINTS      /* small filled circles: thousands of points that must
+                           not merge (surfaces of section) */
 } hl_draw;
 
 typedef enum hl_color {

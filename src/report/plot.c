@@ -164,7 +164,7 @@ hl_status hl_figure_add(hl_figure *fig, size_t n, const double *x, const double 
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "series data is NULL");
     if ((int)color < 0 || color >= HL_COLOR_COUNT)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "unknown colour %d", (int)color);
-    if ((int)draw < HL_DRAW_LINE || draw > HL_DRAW_DIAMONDS)
+    if ((int)draw < HL_DRAW_LINE || draw > HL_DRAW_POINTS)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "unknown draw kind %d", (int)draw);
     if (n > HL_PLOT_MAX_POINTS)
         return hl_error_set(err, HL_ELIMIT, NULL, -1, 0, "series of %zu points (limit %d)",

@@ -22,6 +22,7 @@
  * any pixel size: text 14 px and dots of radius 3.5 px at 600 px tall. */
 #define CHAR_FRAC (14.0 / 600.0)
 #define DOT_FRAC (3.5 / 600.0)
+#define POINT_FRAC (1.1 / 600.0) /* HL_DRAW_POINTS: a section's fine structure */
 #define LINE_WIDTH 2.0
 
 static pthread_mutex_t plot_lock = PTHREAD_MUTEX_INITIALIZER;
@@ -150,7 +151,7 @@ static void draw_markers(const hl_plot_series *s, const hl_plot_layout *lay)
     plgvpd(&vx0, &vx1, &vy0, &vy1);
     plgspa(&px0, &px1, &py0, &py1);
     /* marker radius in world units along each axis (equal in mm) */
-    double r_mm = DOT_FRAC * (py1 - py0);
+    double r_mm = (s->draw == HL_DRAW_POINTS ? POINT_FRAC : DOT_FRAC) * (py1 - py0);
     double rx = r_mm * (lay->wx1 - lay->wx0) / ((vx1 - vx0) * (px1 - px0));
     double ry = r_mm * (lay->wy1 - lay->wy0) / ((vy1 - vy0) * (py1 - py0));
     double ux[16], uy[16];

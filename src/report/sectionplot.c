@@ -61,7 +61,7 @@ hl_figure *hl_section_figure(const char *title, const char *xlabel, const char *
     for (int i = 0; i < norbits; i++) {
         hl_color c = (hl_color)(1 + i % (HL_COLOR_COUNT - 1));
         snprintf(label, sizeof label, "orbit %d", i);
-        if (hl_figure_add(f, counts[i], xs[i], ys[i], HL_DRAW_DOTS, c, label, err) != HL_OK) {
+        if (hl_figure_add(f, counts[i], xs[i], ys[i], HL_DRAW_POINTS, c, label, err) != HL_OK) {
             hl_figure_free(f);
             return NULL;
         }
@@ -130,7 +130,7 @@ hl_status hl_section_plot_classes_write(const char *dir, const char *formats, co
     for (int c = 0; c < nclasses && st == HL_OK; c++) {
         double *x, *y;
         size_t n = class_points(&x, &y, norbits, counts, xs, ys, cls, c);
-        st = hl_figure_add(f, n, x, y, HL_DRAW_DOTS, colors[c], labels ? labels[c] : NULL, err);
+        st = hl_figure_add(f, n, x, y, HL_DRAW_POINTS, colors[c], labels ? labels[c] : NULL, err);
         free(x), free(y);
     }
     if (st != HL_OK) {
