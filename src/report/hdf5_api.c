@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "base/lib.h"
 #include "report/hdf5_api.h"
 
 hl_hdf5_api hl_hdf5;
@@ -36,26 +37,16 @@ static const char *resolve_all(void *lib)
 
 /* $HAMLIE_HDF5_LIB, else the soname, else the file CMake found at build
  * time (when it is not on the loader's path). */
-static void *open_library(const char **name)
-{
-    const char *env = getenv("HAMLIE_HDF5_LIB");
-    if (env != NULL && *env != '\0') {
-        *name = env;
-        return dlopen(env, RTLD_LAZY | RTLD_LOCAL);
-    }
-    *name = DEFAULT_LIB;
-    void *lib = dlopen(DEFAULT_LIB, RTLD_LAZY | RTLD_LOCAL);
 #ifdef HAMLIE_HDF5_PATH
-    if (lib == NULL)
-        lib = dlopen(HAMLIE_HDF5_PATH, RTLD_LAZY | RTLD_LOCAL);
+#define FALLBACK_LIB HAMLIE_HDF5_PATH
+#else
+#define FALLBACK_LIB NULL
 #endif
-    return lib;
-}
 
 static void load(void)
 {
     const char *name;
-    void *lib = open_library(&name);
+    void *lib = hl_lib_open("HAMLIE_HDF5_LIB", DEFAULT_LIB, FALLBACK_LIB, &name);
     if (lib == NULL) {
         load_failed = 1;
         snprintf(load_why, sizeof load_why,

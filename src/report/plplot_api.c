@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "base/lib.h"
 #include "hamlie/plot.h"
 #include "report/plplot_api.h"
 
@@ -36,10 +37,9 @@ static const char *resolve_all(void *lib)
 
 static void load(void)
 {
-    const char *env = getenv("HAMLIE_PLPLOT_LIB");
-    const char *name = env != NULL && *env != '\0' ? env : DEFAULT_LIB;
+    const char *name;
     /* local: its device drivers (cairo.so) name libplplot themselves */
-    void *lib = dlopen(name, RTLD_LAZY | RTLD_LOCAL);
+    void *lib = hl_lib_open("HAMLIE_PLPLOT_LIB", DEFAULT_LIB, NULL, &name);
     if (lib == NULL) {
         load_failed = 1;
         snprintf(load_why, sizeof load_why,

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "base/lib.h"
 #include "hamlie/tape.h"
 #include "tape/gccjit_api.h"
 
@@ -39,26 +40,16 @@ static const char *resolve_all(void *lib)
 
 /* The library named by $HAMLIE_GCCJIT_LIB, else the soname, else the file
  * CMake found at build time (when it is not on the loader's path). */
-static void *open_library(const char **name)
-{
-    const char *env = getenv("HAMLIE_GCCJIT_LIB");
-    if (env != NULL && *env != '\0') {
-        *name = env;
-        return dlopen(env, RTLD_LAZY | RTLD_LOCAL);
-    }
-    *name = DEFAULT_LIB;
-    void *lib = dlopen(DEFAULT_LIB, RTLD_LAZY | RTLD_LOCAL);
 #ifdef HAMLIE_GCCJIT_PATH
-    if (lib == NULL)
-        lib = dlopen(HAMLIE_GCCJIT_PATH, RTLD_LAZY | RTLD_LOCAL);
+#define FALLBACK_LIB HAMLIE_GCCJIT_PATH
+#else
+#define FALLBACK_LIB NULL
 #endif
-    return lib;
-}
 
 static void load(void)
 {
     const char *name;
-    void *lib = open_library(&name);
+    void *lib = hl_lib_open("HAMLIE_GCCJIT_LIB", DEFAULT_LIB, FALLBACK_LIB, &name);
     if (lib == NULL) {
         load_failed = 1;
         snprintf(load_why, sizeof load_why,
