@@ -129,6 +129,19 @@ int cli_begin(char ***av, cli_opts *o, hl_system **sys, int argc, char **argv,
 int cli_check_scheme_source(const cli_opts *o, const char *scheme, const char *equations,
                             const char *why_H, const cli_command *cmd);
 
+/* ---- a command's own inputs (input.c) ---- */
+/* *v from s, a whole number in [lo, hi]; -1, or 2 after the usage message
+ * naming opt. */
+int cli_read_long(long *v, const char *s, const char *opt, long lo, long hi,
+                  const cli_command *cmd);
+/* A file's whole text (malloc'd), or NULL after the message. */
+char *cli_read_file(const char *path);
+/* An error whose err->src is text, the contents of file path, shown as
+ * path:LINE:COL with that line and a caret; returns cli_fail's code. */
+int cli_fail_in_file(hl_error *err, const char *path, const char *text);
+/* The number of cores online (at least 1). */
+int cli_cores(void);
+
 /* Print an error with its formula and a caret under err->pos; returns 2
  * (CLI_INTERRUPTED for HL_ESTOP: the job was interrupted). */
 int cli_fail(const hl_error *err);

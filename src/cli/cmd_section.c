@@ -92,17 +92,6 @@ static void found_opt(void *arg, int k, const char *value)
         *slot[k] = value;
 }
 
-static int read_long(long *v, const char *s, const char *opt, long lo, long hi,
-                     const cli_command *cmd)
-{
-    char *end;
-    errno = 0;
-    *v = strtol(s, &end, 10);
-    if (*s == '\0' || *end != '\0' || errno != 0 || *v < lo || *v > hi)
-        return cli_usage(cmd, "%s wants a whole number from %ld to %ld, not '%s'", opt, lo, hi, s);
-    return -1;
-}
-
 static int read_double(double *v, const char *s, const char *opt, const cli_command *cmd)
 {
     char *end;
@@ -132,10 +121,10 @@ static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
     if (s->orbits_s != NULL && s->init_file != NULL)
         return cli_usage(cmd, "--orbits spreads the orbits, --init-file lists them: not both");
     s->orbits = 10, s->ncross = 100;
-    if (s->orbits_s && (rc = read_long(&s->orbits, s->orbits_s, "--orbits", 1, 100000, cmd)) >= 0)
+    if (s->orbits_s && (rc = cli_read_long(&s->orbits, s->orbits_s, "--orbits", 1, 100000, cmd)) >= 0)
         return rc;
     if (s->crossings_s &&
-        (rc = read_long(&s->ncross, s->crossings_s, "--crossings", 1, 100000000, cmd)) >= 0)
+        (rc = cli_read_long(&s->ncross, s->crossings_s, "--crossings", 1, 100000000, cmd)) >= 0)
         return rc;
     s->scheme = s->scheme != NULL ? s->scheme : "lie";
     s->tol = 1e-13;
@@ -152,8 +141,8 @@ static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
         return rc;
     if (s->formats != NULL && s->plot == NULL)
         return cli_usage(cmd, "--format is for the figure of --plot DIR");
-    s->threads = section_cores();
-    if (s->threads_s && (rc = read_long(&s->threads, s->threads_s, "--threads", 1, 1024, cmd)) >= 0)
+    s->threads = cli_cores();
+    if (s->threads_s && (rc = cli_read_long(&s->threads, s->threads_s, "--threads", 1, 1024, cmd)) >= 0)
         return rc;
     hl_error err; /* without libhdf5, say so before computing */
     if (hl_h5_is_h5_path(s->out) && hl_h5_available(&err) != HL_OK)
@@ -177,49 +166,6 @@ static int read_energy(double *E, hl_system *sys, const char *text, hl_error *er
     if (st != HL_OK)
         hl_error_prefix(err, "in --energy");
     return st;
-}
-
-/* A file's whole text, or NULL after the message. */
-static char *slurp(const char *path)
-{
-    FILE *fp = fopen(path, "r");
-    if (fp == NULL) {
-        fprintf(stderr, "hamlie: error: cannot read '%s': %s\n", path, strerror(errno));
-        return NULL;
-    }
-    hl_buf b;
-    hl_buf_init(&b);
-    char chunk[4096];
-    size_t n;
-    while ((n = fread(chunk, 1, sizeof chunk, fp)) > 0)
-        hl_buf_putn(&b, chunk, n);
-    fclose(fp);
-    if (b.s == NULL)
-        return hl_xstrdup("");
-    return b.s;
-}
-
-/* An error inside a file's text, shown as FILE:LINE:COL with that line. */
-static int fail_in_file(hl_error *err, const char *path, const char *text)
-{
-    if (err->src != text || err->pos < 0)
-        return cli_fail(err);
-    int line = 1, start = 0;
-    for (int i = 0; i < err->pos && text[i]; i++)
-        if (text[i] == '\n')
-            line++, start = i + 1;
-    int end = start;
-    while (text[end] && text[end] != '\n')
-        end++;
-    char *one = hl_xmalloc((size_t)(end - start + 1));
-    memcpy(one, text + start, (size_t)(end - start));
-    one[end - start] = '\0';
-    err->src = one;
-    err->pos -= start;
-    hl_error_prefix(err, "%s:%d:%d", path, line, err->pos + 1);
-    int rc = cli_fail(err);
-    free(one);
-    return rc;
 }
 
 /* ---- the orbits ------------------------------------------------------------- */
@@ -474,12 +420,12 @@ static int seeds(double **zs, int *M, hl_section *sec, const sec_opts *s)
             return cli_fail(&err);
         return CLI_OK;
     }
-    char *text = slurp(s->init_file);
+    char *text = cli_read_file(s->init_file);
     if (text == NULL)
         return CLI_ERROR;
     int rc = CLI_OK;
     if (hl_section_read_points(sec, text, zs, M, &err) != HL_OK)
-        rc = fail_in_file(&err, s->init_file, text);
+        rc = cli_fail_in_file(&err, s->init_file, text);
     free(text);
     return rc;
 }

@@ -110,24 +110,6 @@ static int read_double(double *v, const char *s, const char *opt, const cli_comm
     return -1;
 }
 
-static int read_long(long *v, const char *s, const char *opt, long lo, long hi,
-                     const cli_command *cmd)
-{
-    char *end;
-    errno = 0;
-    long x = strtol(s, &end, 10);
-    if (*s == '\0' || *end != '\0' || errno != 0 || x < lo || x > hi)
-        return cli_usage(cmd, "%s wants a whole number from %ld to %ld, not '%s'", opt, lo, hi, s);
-    *v = x;
-    return -1;
-}
-
-static long cores(void)
-{
-    long n = sysconf(_SC_NPROCESSORS_ONLN);
-    return n >= 1 ? n : 1;
-}
-
 static int check_numbers(sweep_opts *s, const cli_command *cmd)
 {
     int rc;
@@ -140,12 +122,12 @@ static int check_numbers(sweep_opts *s, const cli_command *cmd)
     s->tol = 1e-15;
     if (s->tol_s != NULL && (rc = read_double(&s->tol, s->tol_s, "--tol", cmd)) >= 0)
         return rc;
-    s->threads = cores();
+    s->threads = cli_cores();
     if (s->threads_s != NULL &&
-        (rc = read_long(&s->threads, s->threads_s, "--threads", 1, 1024, cmd)) >= 0)
+        (rc = cli_read_long(&s->threads, s->threads_s, "--threads", 1, 1024, cmd)) >= 0)
         return rc;
     if (s->count_s != NULL &&
-        (rc = read_long(&s->count, s->count_s, "--count", 1, HL_SWEEP_MAX_MEMBERS, cmd)) >= 0)
+        (rc = cli_read_long(&s->count, s->count_s, "--count", 1, HL_SWEEP_MAX_MEMBERS, cmd)) >= 0)
         return rc;
     s->seed = 1;
     if (s->seed_s != NULL) {
@@ -186,47 +168,6 @@ static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
     if (hl_h5_is_h5_path(s->out) && hl_h5_available(&err) != HL_OK)
         return cli_fail(&err);
     return check_numbers(s, cmd);
-}
-
-/* A file's whole text, or NULL after the message. */
-static char *slurp(const char *path)
-{
-    FILE *fp = fopen(path, "r");
-    if (fp == NULL) {
-        fprintf(stderr, "hamlie: error: cannot read '%s': %s\n", path, strerror(errno));
-        return NULL;
-    }
-    hl_buf b;
-    hl_buf_init(&b);
-    char chunk[65536];
-    size_t n;
-    while ((n = fread(chunk, 1, sizeof chunk, fp)) > 0)
-        hl_buf_putn(&b, chunk, n);
-    fclose(fp);
-    return b.s != NULL ? b.s : hl_xstrdup("");
-}
-
-/* An error inside the CSV file's text, shown as FILE:LINE:COL with that line. */
-static int fail_in_file(hl_error *err, const char *path, const char *text)
-{
-    if (err->src != text || err->pos < 0)
-        return cli_fail(err);
-    int line = 1, start = 0;
-    for (int i = 0; i < err->pos && text[i]; i++)
-        if (text[i] == '\n')
-            line++, start = i + 1;
-    int end = start;
-    while (text[end] && text[end] != '\n')
-        end++;
-    char *one = hl_xmalloc((size_t)(end - start + 1));
-    memcpy(one, text + start, (size_t)(end - start));
-    one[end - start] = '\0';
-    err->src = one;
-    err->pos -= start;
-    hl_error_prefix(err, "%s:%d:%d", path, line, err->pos + 1);
-    int rc = cli_fail(err);
-    free(one);
-    return rc;
 }
 
 /* ---- running ---------------------------------------------------------------- */
@@ -426,7 +367,7 @@ int cmd_sweep(int argc, char **argv, const cli_command *cmd)
     hl_system *sys = NULL;
     int rc = cli_begin(&av, &o, &sys, argc, argv, cmd, &spec, &s);
     char *csv = NULL;
-    if (rc < 0 && s.init_file != NULL && (csv = slurp(s.init_file)) == NULL)
+    if (rc < 0 && s.init_file != NULL && (csv = cli_read_file(s.init_file)) == NULL)
         rc = CLI_ERROR;
     hl_sweep *sw = NULL;
     hl_sweep_spec sp = {.H = o.H,
@@ -449,7 +390,7 @@ int cmd_sweep(int argc, char **argv, const cli_command *cmd)
     hl_error_clear(&err);
     if (rc < 0 && hl_sweep_new(&sw, &sp, &err) != HL_OK) {
         if (csv != NULL && err.src == csv)
-            rc = fail_in_file(&err, s.init_file, csv);
+            rc = cli_fail_in_file(&err, s.init_file, csv);
         else /* the message names the field: "grid: ...", "schemes: ..." */
             rc = cli_fail(&err);
     }

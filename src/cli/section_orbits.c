@@ -35,12 +35,6 @@ typedef struct pool {
     atomic_int stop; /* set on Ctrl-C: every run stops at its next check */
 } pool;
 
-int section_cores(void)
-{
-    long n = sysconf(_SC_NPROCESSORS_ONLN);
-    return n >= 1 ? (int)n : 1;
-}
-
 /* ---- building a thread's objects ------------------------------------------- */
 
 static void worker_free(worker *w)

@@ -70,7 +70,5 @@ void section_orbits_free(section_orbit *orbits, int M);
 int section_write_chaos_csv(const crossings *table, const section_orbit *orbits, hl_system *sys,
                             const char *path);
 
-/* The number of cores (at least 1). */
-int section_cores(void);
 
 #endif
