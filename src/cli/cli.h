@@ -141,6 +141,10 @@ char *cli_read_file(const char *path);
 int cli_fail_in_file(hl_error *err, const char *path, const char *text);
 /* The number of cores online (at least 1). */
 int cli_cores(void);
+/* b's text to path whole: to path.tmp, renamed when all is written (an
+ * error leaves nothing under path); "-": standard output (cli_emit).  b is
+ * freed.  CLI_OK, or CLI_ERROR after the message. */
+int cli_write_whole(hl_buf *b, const char *path);
 
 /* Print an error with its formula and a caret under err->pos; returns 2
  * (CLI_INTERRUPTED for HL_ESTOP: the job was interrupted). */

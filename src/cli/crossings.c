@@ -83,30 +83,7 @@ int crossings_write_csv(const crossings *c, hl_system *sys, const char *path, in
     hl_buf b;
     hl_buf_init(&b);
     put_csv(&b, c, sys, with_orbit);
-    int rc = CLI_OK;
-    if (strcmp(path, "-") == 0) {
-        rc = cli_emit(&b, CLI_OK); /* frees b */
-        return rc;
-    }
-    size_t n = strlen(path) + 5;
-    char *tmp = hl_xmalloc(n);
-    snprintf(tmp, n, "%s.tmp", path);
-    FILE *fp = fopen(tmp, "w");
-    if (fp == NULL) {
-        fprintf(stderr, "hamlie: error: cannot write '%s': %s\n", tmp, strerror(errno));
-        rc = CLI_ERROR;
-    } else {
-        int bad = fwrite(b.s, 1, b.len, fp) != b.len;
-        bad |= fclose(fp) != 0;
-        if (bad || rename(tmp, path) != 0) {
-            fprintf(stderr, "hamlie: error: writing '%s' failed: %s\n", path, strerror(errno));
-            remove(tmp);
-            rc = CLI_ERROR;
-        }
-    }
-    free(tmp);
-    hl_buf_clear(&b);
-    return rc;
+    return cli_write_whole(&b, path);
 }
 
 /* ---- HDF5 ------------------------------------------------------------------ */

@@ -1,6 +1,6 @@
-/* A command's own inputs: whole numbers in options, files read whole, an
- * error inside a file's text shown at its line, the number of cores (the
- * commands that run many orbits: section, sweep). */
+/* A command's own files and inputs: whole numbers in options, files read
+ * and written whole, an error inside a file's text shown at its line, the
+ * number of cores (the commands that run many orbits: section, sweep). */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -66,4 +66,30 @@ int cli_cores(void)
 {
     long n = sysconf(_SC_NPROCESSORS_ONLN);
     return n >= 1 ? (int)n : 1;
+}
+
+int cli_write_whole(hl_buf *b, const char *path)
+{
+    if (strcmp(path, "-") == 0)
+        return cli_emit(b, CLI_OK); /* frees b */
+    size_t n = strlen(path) + 5;
+    char *tmp = hl_xmalloc(n);
+    snprintf(tmp, n, "%s.tmp", path);
+    FILE *fp = fopen(tmp, "w");
+    int rc = CLI_OK;
+    if (fp == NULL) {
+        fprintf(stderr, "hamlie: error: cannot write '%s': %s\n", tmp, strerror(errno));
+        rc = CLI_ERROR;
+    } else {
+        int bad = fwrite(b->s, 1, b->len, fp) != b->len;
+        bad |= fclose(fp) != 0;
+        if (bad || rename(tmp, path) != 0) {
+            fprintf(stderr, "hamlie: error: writing '%s' failed: %s\n", path, strerror(errno));
+            remove(tmp);
+            rc = CLI_ERROR;
+        }
+    }
+    free(tmp);
+    hl_buf_clear(b);
+    return rc;
 }

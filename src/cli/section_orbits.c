@@ -248,26 +248,5 @@ int section_write_chaos_csv(const crossings *table, const section_orbit *orbits,
     hl_buf b;
     hl_buf_init(&b);
     put_chaos_csv(&b, table, orbits, sys);
-    if (strcmp(path, "-") == 0)
-        return cli_emit(&b, CLI_OK); /* frees b */
-    size_t n = strlen(path) + 5;
-    char *tmp = hl_xmalloc(n);
-    snprintf(tmp, n, "%s.tmp", path);
-    FILE *fp = fopen(tmp, "w");
-    int rc = CLI_OK;
-    if (fp == NULL) {
-        fprintf(stderr, "hamlie: error: cannot write '%s': %s\n", tmp, strerror(errno));
-        rc = CLI_ERROR;
-    } else {
-        int bad = fwrite(b.s, 1, b.len, fp) != b.len;
-        bad |= fclose(fp) != 0;
-        if (bad || rename(tmp, path) != 0) {
-            fprintf(stderr, "hamlie: error: writing '%s' failed: %s\n", path, strerror(errno));
-            remove(tmp);
-            rc = CLI_ERROR;
-        }
-    }
-    free(tmp);
-    hl_buf_clear(&b);
-    return rc;
+    return cli_write_whole(&b, path);
 }
