@@ -10,6 +10,7 @@
  * (pow(x, 2) -> x*x is not exact for glibc's pow); contraction into FMA is
  * switched off (-ffp-contract=off).  sqrt is GCC's builtin (sqrtsd,
  * correctly rounded like libm's).  When compiling pays: cost.c. */
+#include <dirent.h>
 #include <errno.h>
 #include <pthread.h>
 #include <signal.h>
@@ -135,11 +136,37 @@ static int compile_in_child(gcc_jit_context *c, const char *path)
     return WIFSIGNALED(status) ? -1 : compile_holding_signals(c, path, NULL);
 }
 
+/* NOTE: under AddressSanitizer a fork while other threads run (a sweep's,
+ * a section's) can leave the child waiting forever on the sanitizer
+ * allocator's lock, held by another thread at the fork (glibc's malloc is
+ * made safe across fork, the sanitizer's is not): found by cli/mpi's
+ * two-thread sweep.  There the compilation stays in process. */
+#if defined(__SANITIZE_ADDRESS__)
+#define FORK_SAFE_WITH_THREADS 0
+#else
+#define FORK_SAFE_WITH_THREADS 1
+#endif
+
+/* Does this process run other threads?  (/proc/self/task has one entry per
+ * thread; without /proc, no.) */
+static int other_threads_run(void)
+{
+    DIR *d = opendir("/proc/self/task");
+    if (d == NULL)
+        return 0;
+    int n = 0;
+    for (struct dirent *e; (e = readdir(d)) != NULL;)
+        n += e->d_name[0] != '.';
+    closedir(d);
+    return n > 1;
+}
+
 int hl_jit_run_compiler(gcc_jit_context *c, const char *path, gcc_jit_result **res)
 {
     static pthread_mutex_t one_at_a_time = PTHREAD_MUTEX_INITIALIZER;
     pthread_mutex_lock(&one_at_a_time);
-    int rc = path != NULL ? compile_in_child(c, path) : compile_holding_signals(c, NULL, res);
+    int in_child = path != NULL && (FORK_SAFE_WITH_THREADS || !other_threads_run());
+    int rc = in_child ? compile_in_child(c, path) : compile_holding_signals(c, path, res);
     pthread_mutex_unlock(&one_at_a_time);
     return rc;
 }
