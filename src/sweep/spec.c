@@ -100,6 +100,21 @@ char *sweep_paramset_text(const hl_sweep *sw, long paramset)
 
 /* ---- schemes and steps ---------------------------------------------------- */
 
+/* The item of a comma list that starts at a: [*ta, *tb), without its
+ * spaces.  Returns where it ends (its comma, or len). */
+static int list_field(const char *text, int len, int a, int *ta, int *tb)
+{
+    int b = a;
+    while (b < len && text[b] != ',')
+        b++;
+    *ta = a, *tb = b;
+    while (*ta < *tb && text[*ta] == ' ')
+        ++*ta;
+    while (*tb > *ta && text[*tb - 1] == ' ')
+        --*tb;
+    return b;
+}
+
 static hl_status read_schemes(hl_sweep *sw, hl_system *sys, hl_error *err)
 {
     const char *text = sw->spec.schemes;
@@ -107,14 +122,7 @@ static hl_status read_schemes(hl_sweep *sw, hl_system *sys, hl_error *err)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "no scheme: name one or more");
     int len = (int)strlen(text), st = HL_OK;
     for (int a = 0; st == HL_OK && a <= len;) {
-        int b = a;
-        while (b < len && text[b] != ',')
-            b++;
-        int ta = a, tb = b;
-        while (ta < tb && text[ta] == ' ')
-            ta++;
-        while (tb > ta && text[tb - 1] == ' ')
-            tb--;
+        int ta, tb, b = list_field(text, len, a, &ta, &tb);
         char *name = hl_xcalloc((size_t)(tb - ta) + 1, 1);
         memcpy(name, text + ta, (size_t)(tb - ta));
         sw->scheme = hl_xrealloc(sw->scheme, (size_t)(sw->nschemes + 1) * sizeof *sw->scheme);
@@ -165,14 +173,7 @@ static hl_status read_dts(hl_sweep *sw, hl_error *err)
     }
     int len = (int)strlen(text), st = HL_OK;
     for (int a = 0; st == HL_OK && a <= len;) {
-        int b = a;
-        while (b < len && text[b] != ',')
-            b++;
-        int ta = a, tb = b;
-        while (ta < tb && text[ta] == ' ')
-            ta++;
-        while (tb > ta && text[tb - 1] == ' ')
-            tb--;
+        int ta, tb, b = list_field(text, len, a, &ta, &tb);
         double dt = 0;
         long n;
         hl_error e;
