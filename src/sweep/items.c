@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "base/buf.h"
+#include "hamlie/expr.h"
 #include "sweep/sweep_impl.h"
 
 static int is_blank(char c)
@@ -94,11 +95,37 @@ void sweep_items_free(sweep_item *items, int n)
     free(items);
 }
 
+/* A value that is not a plain number: a constant formula (pi/2, 1/8,
+ * sqrt(2)), as run's initial values take.  buf holds the item alone. */
+static hl_status constant_formula(double *v, const char *buf, const char *text, int pos, int len,
+                                  const char *what, hl_error *err)
+{
+    hl_pool *pool = hl_pool_new();
+    const hl_expr *e;
+    const char *sym;
+    hl_error e1;
+    hl_error_clear(&e1);
+    hl_status st = hl_parse(&e, pool, buf, &e1);
+    if (st != HL_OK)
+        st = hl_error_set(err, HL_EPARSE, text, pos + (e1.pos > 0 ? e1.pos : 0), 1,
+                          "%s: expected a number or a constant formula, not '%s': %s", what, buf,
+                          e1.msg);
+    else if (hl_expr_symbols(e, &sym, 1) > 0)
+        st = hl_error_set(err, HL_EINVAL, text, pos + hl_symbol_pos(buf, sym), (int)strlen(sym),
+                          "%s: expected a number or a constant formula, not '%s' (it depends "
+                          "on '%s')",
+                          what, buf, sym);
+    else if ((st = hl_expr_eval_d(v, e, 0, NULL, NULL, &e1)) != HL_OK)
+        st = hl_error_set(err, st, text, pos, len, "%s: '%s': %s", what, buf, e1.msg);
+    hl_pool_free(pool);
+    return st;
+}
+
 hl_status sweep_number(double *v, const char *text, int pos, int len, const char *what,
                        hl_error *err)
 {
-    char buf[64];
-    if (len <= 0 || len > 63)
+    char buf[256];
+    if (len <= 0 || len > 255)
         return hl_error_set(err, HL_EPARSE, text, pos, len > 0 ? len : 1, "%s: expected a number",
                             what);
     memcpy(buf, text + pos, (size_t)len);
@@ -106,9 +133,11 @@ hl_status sweep_number(double *v, const char *text, int pos, int len, const char
     char *end;
     errno = 0;
     *v = strtod(buf, &end);
-    if (end == buf || *end != '\0')
-        return hl_error_set(err, HL_EPARSE, text, pos, len, "%s: expected a number, not '%s'", what,
-                            buf);
+    if (end == buf || *end != '\0') {
+        hl_status st = constant_formula(v, buf, text, pos, len, what, err);
+        if (st != HL_OK)
+            return st;
+    }
     if (!isfinite(*v))
         return hl_error_set(err, HL_EDOM, text, pos, len, "%s: '%s' is not finite", what, buf);
     return HL_OK;

@@ -178,6 +178,15 @@ bad_input "a range of 0 points" --grid 'q=1:0:0,p=0' --dt 0.1
 grep -qF '       ^' "$tmp/err" && ok || bad "no caret under the range's count"
 bad_input "'x' is not a variable" --grid 'q=0,x=1' --dt 0.1
 bad_input "not reachable" --grid 'q=0,p=0' --dt 0.1,0.3
+bad_input "(it depends on 'p')" --grid 'q=pi/p,p=0' --dt 0.1
+# values may be constant formulas, as run's initial values: q = pi is the top
+run 0 sweep -H "$PEND" --grid 'q=pi,p=-pi/2:0:2' --scheme rk4 --t 1 --dt 0.5 --out "$tmp/pi.csv"
+pycheck "constant formulas in a grid" '
+import csv, math, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert [float(r["q0"]) for r in rows] == [math.pi] * 2, rows
+assert [float(r["p0"]) for r in rows] == [-math.pi / 2, 0.0], rows
+' "$tmp/pi.csv"
 bad_input "exactly one of" --dt 0.1
 bad_input "2 values expected, 1 given" --init-file <(printf 'q,p\n1,2\n3\n') --dt 0.1
 err_has ":3:1:"
