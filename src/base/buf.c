@@ -106,3 +106,18 @@ char *hl_buf_take(hl_buf *b)
     hl_buf_init(b);
     return s;
 }
+
+void hl_buf_csv_field(hl_buf *b, const char *s)
+{
+    if (strpbrk(s, ",\"\n\r") == NULL) {
+        hl_buf_puts(b, s);
+        return;
+    }
+    hl_buf_putc(b, '"');
+    for (; *s; s++) {
+        if (*s == '"')
+            hl_buf_putc(b, '"');
+        hl_buf_putc(b, *s == '\n' || *s == '\r' ? ' ' : *s);
+    }
+    hl_buf_putc(b, '"');
+}

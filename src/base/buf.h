@@ -19,6 +19,10 @@ void hl_buf_init(hl_buf *b);
 void hl_buf_clear(hl_buf *b);                    /* frees */
 void hl_buf_putc(hl_buf *b, char c);
 void hl_buf_puts(hl_buf *b, const char *s);
+/* s as one CSV field: as it is, or quoted (quotes doubled) when it holds a
+ * comma, a quote or a line break; a line break is written as a space, so
+ * that every record stays one line for line-based readers. */
+void hl_buf_csv_field(hl_buf *b, const char *s);
 void hl_buf_putn(hl_buf *b, const char *s, size_t n);
 void hl_buf_printf(hl_buf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 char *hl_buf_take(hl_buf *b);                    /* returns the string ("" if empty), resets b */

@@ -7,23 +7,6 @@
 
 #include "cli/run.h"
 
-/* ---- CSV ---------------------------------------------------------------- */
-
-static void csv_field(hl_buf *b, const char *s)
-{
-    if (strpbrk(s, ",\"\n") == NULL) {
-        hl_buf_puts(b, s);
-        return;
-    }
-    hl_buf_putc(b, '"');
-    for (; *s; s++) {
-        if (*s == '"')
-            hl_buf_putc(b, '"');
-        hl_buf_putc(b, *s == '\n' ? ' ' : *s);
-    }
-    hl_buf_putc(b, '"');
-}
-
 void run_csv_flush(csv *c)
 {
     if (c->fp != NULL && c->buf.len > 0 && fwrite(c->buf.s, 1, c->buf.len, c->fp) != c->buf.len)
@@ -94,14 +77,14 @@ void run_csv_header(csv *c, hl_system *sys, const run_opts *r)
     hl_buf_puts(&c->buf, "t");
     for (int i = 0; i < 2 * N; i++) {
         hl_buf_putc(&c->buf, ',');
-        csv_field(&c->buf, cli_phase_name(sys, i));
+        hl_buf_csv_field(&c->buf, cli_phase_name(sys, i));
     }
     hl_buf_puts(&c->buf, ",H");
     if (c->sigma)
         hl_buf_puts(&c->buf, ",sigma");
     for (int i = 0; i < r->nobserve; i++) {
         hl_buf_putc(&c->buf, ',');
-        csv_field(&c->buf, r->observe[i]);
+        hl_buf_csv_field(&c->buf, r->observe[i]);
     }
     hl_buf_putc(&c->buf, '\n');
 }

@@ -14,22 +14,6 @@
 #include "hamlie/h5.h"
 #include "sweep/sweep_impl.h"
 
-/* A CSV field: quoted when it holds a comma, a quote or a line break. */
-static void put_field(hl_buf *b, const char *s)
-{
-    if (strpbrk(s, ",\"\n\r") == NULL) {
-        hl_buf_puts(b, s);
-        return;
-    }
-    hl_buf_putc(b, '"');
-    for (; *s; s++) {
-        if (*s == '"')
-            hl_buf_putc(b, '"');
-        hl_buf_putc(b, *s);
-    }
-    hl_buf_putc(b, '"');
-}
-
 static void put_row(hl_buf *b, const hl_sweep *sw, const hl_sweep_table *tab, long m)
 {
     const double *row = hl_sweep_table_row(tab, m);
@@ -38,7 +22,7 @@ static void put_row(hl_buf *b, const hl_sweep *sw, const hl_sweep_table *tab, lo
         if (c > 0)
             hl_buf_putc(b, ',');
         if (c == SWEEP_C_SCHEME)
-            put_field(b, sw->scheme[(int)row[c]]);
+            hl_buf_csv_field(b, sw->scheme[(int)row[c]]);
         else if (c == SWEEP_C_DT)
             hl_buf_putn(b, num, (size_t)hl_run_fmt_short(num, row[c]));
         else
@@ -48,7 +32,7 @@ static void put_row(hl_buf *b, const hl_sweep *sw, const hl_sweep_table *tab, lo
     hl_buf_putc(b, ',');
     hl_buf_puts(b, st == HL_OK ? "ok" : hl_status_string(st));
     hl_buf_putc(b, ',');
-    put_field(b, hl_sweep_table_reason(tab, m));
+    hl_buf_csv_field(b, hl_sweep_table_reason(tab, m));
     hl_buf_putc(b, '\n');
 }
 
@@ -63,7 +47,7 @@ static int write_csv_fp(FILE *fp, const hl_sweep *sw, const hl_sweep_table *tab)
     for (int c = 0; c < sw->ncols; c++) {
         if (c > 0)
             hl_buf_putc(&b, ',');
-        put_field(&b, sw->col[c]);
+        hl_buf_csv_field(&b, sw->col[c]);
     }
     hl_buf_puts(&b, ",status,reason\n");
     int ok = 1;
