@@ -121,3 +121,12 @@ void hl_buf_csv_field(hl_buf *b, const char *s)
     }
     hl_buf_putc(b, '"');
 }
+
+int hl_buf_read_stream(hl_buf *b, FILE *fp)
+{
+    char chunk[65536];
+    size_t n;
+    while ((n = fread(chunk, 1, sizeof chunk, fp)) > 0)
+        hl_buf_putn(b, chunk, n);
+    return ferror(fp);
+}

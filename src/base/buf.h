@@ -8,6 +8,7 @@
 #define HAMLIE_BASE_BUF_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 typedef struct hl_buf {
     char *s;    /* always NUL-terminated once anything was appended */
@@ -23,6 +24,9 @@ void hl_buf_puts(hl_buf *b, const char *s);
  * comma, a quote or a line break; a line break is written as a space, so
  * that every record stays one line for line-based readers. */
 void hl_buf_csv_field(hl_buf *b, const char *s);
+/* Append everything left in fp (read in large chunks); returns
+ * ferror(fp): nonzero when reading failed. */
+int hl_buf_read_stream(hl_buf *b, FILE *fp);
 void hl_buf_putn(hl_buf *b, const char *s, size_t n);
 void hl_buf_printf(hl_buf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 char *hl_buf_take(hl_buf *b);                    /* returns the string ("" if empty), resets b */

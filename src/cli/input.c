@@ -31,10 +31,7 @@ char *cli_read_file(const char *path)
     }
     hl_buf b;
     hl_buf_init(&b);
-    char chunk[65536];
-    size_t n;
-    while ((n = fread(chunk, 1, sizeof chunk, fp)) > 0)
-        hl_buf_putn(&b, chunk, n);
+    hl_buf_read_stream(&b, fp);
     fclose(fp);
     return b.s != NULL ? b.s : hl_xstrdup("");
 }

@@ -86,11 +86,7 @@ static hl_status read_file(unsigned char **data, size_t *n, const char *path, hl
                                               path, strerror(errno));
     hl_buf b;
     hl_buf_init(&b);
-    char chunk[65536];
-    size_t k;
-    while ((k = fread(chunk, 1, sizeof chunk, fp)) > 0)
-        hl_buf_putn(&b, chunk, k);
-    int bad = ferror(fp);
+    int bad = hl_buf_read_stream(&b, fp);
     fclose(fp);
     *n = b.len;
     *data = (unsigned char *)hl_buf_take(&b);

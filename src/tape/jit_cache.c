@@ -316,11 +316,7 @@ static char *read_file(const char *path, size_t *n)
         return NULL;
     hl_buf b;
     hl_buf_init(&b);
-    char chunk[65536];
-    size_t got;
-    while ((got = fread(chunk, 1, sizeof chunk, f)) > 0)
-        hl_buf_putn(&b, chunk, got);
-    int bad = ferror(f);
+    int bad = hl_buf_read_stream(&b, f);
     fclose(f);
     *n = b.len;
     char *s = hl_buf_take(&b);
