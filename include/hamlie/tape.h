@@ -218,6 +218,11 @@ int hl_tape_compile_pays(const hl_tape *tape, hl_compile_kind kind, long uses);
  * otherwise wait to learn its run's length (the flow's probe) asks this
  * first.  hl_tape_compile_pays says yes in these cases as well. */
 int hl_tape_compile_kept(const hl_tape *tape, hl_compile_kind kind, long uses);
+/* 1 if hl_tape_batch's compiled recursion (this order and lane count)
+ * repays itself over member_steps Taylor steps of members in its lanes:
+ * kept in the disk cache, or worth compiling (about a second).  0 without
+ * libgccjit (the lanes then run one by one: no gain). */
+int hl_tape_batch_pays(const hl_tape *tape, int order, int lanes, long member_steps);
 /* ---- the disk cache of compiled code (`hamlie cache`) ----
  * Compiled code is kept in $HAMLIE_CACHE_DIR, else $XDG_CACHE_HOME/hamlie,
  * else ~/.cache/hamlie (HAMLIE_CACHE=off: not at all).  hamlie's files

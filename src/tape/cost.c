@@ -82,8 +82,26 @@
 #define TAYLOR_SAVED_NS_PER_OP 80.0
 #define TAYLOR_SAVED_AT_ORDER 19
 
+/* The batch recursion (hl_tape_batch, the lanes of hl_flow_batch): about
+ * 1.1 s to compile 4 lanes of Henon-Heiles at order 20 (1.3 s the single
+ * recursion, on the same loaded machine; bench/taylor_batch.sh "compile").
+ * A member's step in 4 lanes then took 135 ns against 868 ns interpreted
+ * one member at a time (2671 against 415 members a second of 2776 steps,
+ * bench/taylor_batch.sh): 733 ns saved, about what TAYLOR_SAVED_NS_PER_OP
+ * puts on the compiled single recursion (800 ns), so that figure serves,
+ * and one member-step is one use.  The single run is interpreted in the
+ * runs a sweep makes (a few thousand steps each): it is the peer. */
+#define BATCH_COMPILE_NS 1.1e9
+
 /* What a compiled Newton solve saves (see NEWTON_BREAKEVEN_SOLVES). */
 #define NEWTON_SAVED_NS_PER_SOLVE 80.0
+
+/* What a Taylor step at this order saves compiled. */
+static double taylor_saved_ns(const hl_tape *t, int order)
+{
+    double r = (double)(order + 1) / (TAYLOR_SAVED_AT_ORDER + 1);
+    return TAYLOR_SAVED_NS_PER_OP * (hl_tape_nops(t) + 1) * r * r;
+}
 
 /* The saved ns per use of kind's compiled code. */
 static double saved_ns_per_use(const hl_tape *t, hl_compile_kind kind)
@@ -94,10 +112,8 @@ static double saved_ns_per_use(const hl_tape *t, hl_compile_kind kind)
         return JIT_SAVED_NS_PER_OP * ops;
     case HL_COMPILE_LOOP:
         return JIT_SAVED_NS_PER_OP * ops + LOOP_SAVED_NS_PER_STEP;
-    case HL_COMPILE_TAYLOR: {
-        double r = (double)t->ts / (TAYLOR_SAVED_AT_ORDER + 1);
-        return TAYLOR_SAVED_NS_PER_OP * (hl_tape_nops(t) + 1) * r * r;
-    }
+    case HL_COMPILE_TAYLOR:
+        return taylor_saved_ns(t, t->ts - 1);
     }
     return 0;
 }
@@ -201,4 +217,26 @@ int hl_newton_compile_pays(const hl_newton *nw, long solves)
 long hl_tape_jit_breakeven(const hl_tape *t)
 {
     return hl_tape_compile_breakeven(t, HL_COMPILE_EVAL);
+}
+
+/* 1 if the cache holds the batch recursion of this order and lane count. */
+static int batch_kept(const hl_tape *t, int order, int lanes)
+{
+    hl_buf inputs;
+    hl_buf_init(&inputs);
+    hl_jit_inputs_batch(&inputs, t, order, lanes);
+    int has = hl_jit_cache_has(lanes > 1 ? HL_JIT_SITE_BATCH : HL_JIT_SITE_TAYLOR, &inputs);
+    hl_buf_clear(&inputs);
+    return has;
+}
+
+int hl_tape_batch_pays(const hl_tape *t, int order, int lanes, long member_steps)
+{
+    if (t == NULL || t->ncode == 0 || member_steps <= 0 || !hl_tape_jit_available())
+        return 0;
+    double saved = taylor_saved_ns(t, order);
+    long breakeven = uses_to_repay(BATCH_COMPILE_NS, saved);
+    int kept =
+        member_steps < breakeven && hit_repaid(saved, member_steps) && batch_kept(t, order, lanes);
+    return pays_with_cache(breakeven, member_steps, kept);
 }

@@ -107,6 +107,13 @@ void hl_jit_inputs_taylor(hl_buf *b, const hl_tape *t, int order)
     hl_jit_inputs_tape(b, t);
 }
 
+void hl_jit_inputs_batch(hl_buf *b, const hl_tape *t, int order, int lanes)
+{
+    hl_jit_inputs_taylor(b, t, order);
+    if (lanes > 1) /* the single recursion's key stays as it was */
+        hl_buf_printf(b, "lanes %d\n", lanes);
+}
+
 void hl_jit_inputs_newton(hl_buf *b, const hl_newton *nw)
 {
     hl_buf_printf(b, "newton m %d nx %d nz %d max_iter %d z %d\n", nw->m, nw->nx, nw->nz,

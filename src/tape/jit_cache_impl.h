@@ -23,6 +23,8 @@ typedef enum hl_jit_site {
  * program (appended to b). */
 void hl_jit_inputs_tape(hl_buf *b, const hl_tape *t);
 void hl_jit_inputs_taylor(hl_buf *b, const hl_tape *t, int order);
+/* the Taylor recursion over lanes (jit_batch.c; lanes 1: the single's) */
+void hl_jit_inputs_batch(hl_buf *b, const hl_tape *t, int order, int lanes);
 void hl_jit_inputs_newton(hl_buf *b, const hl_newton *nw);
 
 /* 1 if the cache is on and holds a valid-looking entry for these inputs

@@ -398,9 +398,7 @@ hl_status hl_tape_jit_taylor_lanes(void **result, void (**fn)(double *R), const 
 {
     hl_buf inputs;
     hl_buf_init(&inputs);
-    hl_jit_inputs_taylor(&inputs, t, order);
-    if (lanes > 1) /* the single recursion's key stays as it was */
-        hl_buf_printf(&inputs, "lanes %d\n", lanes);
+    hl_jit_inputs_batch(&inputs, t, order, lanes);
     hl_jit_code *code;
     recursion r = {t, order, lanes};
     hl_status status =
