@@ -134,6 +134,14 @@ typedef struct hl_flow_batch hl_flow_batch;
 hl_status hl_flow_batch_new(hl_flow_batch **out, hl_tape *f, double atol, double rtol, int lanes,
                             hl_error *err);
 void hl_flow_batch_free(hl_flow_batch *batch); /* NULL is a no-op */
+/* The probe before hl_flow_batch_new, which compiles: 1 if `members`
+ * members to |t| repay the batch's compiled recursion (tape.h,
+ * hl_tape_batch_pays: kept in the disk cache, or worth compiling), their
+ * steps foreseen from the first step's length at z0 (one Taylor
+ * recursion, interpreted).  Counts, not clocks: the same answer on every
+ * machine with the same cache. */
+int hl_flow_batch_pays(hl_tape *f, double atol, double rtol, int lanes, long members,
+                       const double *z0, double t);
 int hl_flow_batch_order(const hl_flow_batch *batch);
 int hl_flow_batch_lanes(const hl_flow_batch *batch);
 int hl_flow_batch_compiled(const hl_flow_batch *batch); /* 1: SIMD code, 0: lane by lane */
@@ -148,6 +156,28 @@ int hl_flow_batch_compiled(const hl_flow_batch *batch); /* 1: SIMD code, 0: lane
  * ("member 3: ..."); the others went on either way. */
 hl_status hl_flow_batch_evolve(hl_flow_batch *batch, int B, double *t, const double *t1, double *z,
                                hl_status *status, long *nsteps, hl_error *errs, hl_error *err);
+
+/* Outputs on a grid, as hl_run_adaptive asks for them (run.h): member i
+ * starts at t = k0[i] * dt[i] from z[i*n ..] and is called back at each
+ * t_k = (double)k * dt[i], k = k0[i]+1 .. k1[i], with its state there,
+ * evaluated on the step's polynomial as hl_flow_run's outputs (the steps
+ * are not shortened; the last lands on t_k1).  Every `segment` outputs
+ * (0: never) the member starts afresh from its state at the last output,
+ * as a new hl_flow_run call over the next `segment` times would (with the
+ * same flow: its stall watch goes on): every output is then the bits of
+ * hl_flow_run's over the same times, called in those segments.  dt[i] >
+ * 0.  fn's non-zero return stops member i alone, with that return as its
+ * status; fn fills err (the member's errs[i]) when it returns non-zero.
+ * z is then each member's last state, status, nsteps, errs and the
+ * return as hl_flow_batch_evolve's.  fn is called from the caller's
+ * thread, member by member in no fixed order across members (each
+ * member's outputs in order). */
+typedef int (*hl_flow_batch_fn)(int member, long k, double t, const double *z, hl_error *err,
+                                void *arg);
+hl_status hl_flow_batch_grid(hl_flow_batch *batch, int B, const double *dt, const long *k0,
+                             const long *k1, long segment, double *z, hl_flow_batch_fn fn,
+                             void *arg, hl_status *status, long *nsteps, hl_error *errs,
+                             hl_error *err);
 
 /* ---- Arb ---------------------------------------------------------------
  * The same integrator in Arb at about digits decimal digits (tolerance

@@ -29,6 +29,10 @@ typedef struct lane {
     int first;
     long nsteps;
     hl_flow_pace pace;
+    /* on a grid (hl_flow_batch_grid): the next output k (at k * dt), the
+     * last of the segment and of the member */
+    double dt;
+    long k, kseg, kend;
 } lane;
 
 struct hl_flow_batch {
@@ -44,6 +48,7 @@ struct hl_flow_batch {
     double *h;            /* L: each lane's step, signed (0: no step) */
     double *coef;         /* n * (p+1): one lane's coefficients, gathered */
     double *zt, *dz, *fz; /* n each: check_step's scratch */
+    double *zo;           /* L * n: each lane's last output, contiguous */
     double eps;
     int check;
 };
@@ -85,8 +90,46 @@ hl_status hl_flow_batch_new(hl_flow_batch **out, hl_tape *f, double atol, double
     b->zt = hl_xcalloc((size_t)b->n, sizeof *b->zt);
     b->dz = hl_xcalloc((size_t)b->n, sizeof *b->dz);
     b->fz = hl_xcalloc((size_t)b->n, sizeof *b->fz);
+    b->zo = hl_xcalloc(nl, sizeof *b->zo);
     *out = b;
     return HL_OK;
+}
+
+/* The first step's length at z0 (flow.c's step_size, without the check
+ * of its defect): 0 if it cannot be taken. */
+static double first_step(hl_tape *f, int p, double atol, double rtol, const double *z0)
+{
+    const int n = hl_tape_ninputs(f), S = p + 1, lo = hl_flow_window_lo(p), nw = p - lo + 1;
+    double *c = hl_xcalloc((size_t)n * S, sizeof *c), n0 = 0, win[HL_FLOW_WINDOW] = {0};
+    for (int i = 0; i < n; i++)
+        c[(size_t)i * S] = z0[i];
+    int ok = hl_tape_taylor_ode_d(c, p, f, NULL) == HL_OK;
+    for (int i = 0; ok && i < n; i++) {
+        n0 = fmax(n0, fabs(c[(size_t)i * S]));
+        for (int j = 0; j < nw; j++)
+            win[j] = fmax(win[j], fabs(c[(size_t)i * S + lo + j]));
+    }
+    free(c);
+    int check, relative = rtol * n0 > atol;
+    double eps = relative ? rtol * n0 : atol;
+    double h = ok ? hl_flow_step_for(&check, eps, log(eps),
+                                     log(fmax(fmin(atol, rtol), HL_FLOW_MIN_RTOL)), win, p)
+                  : 0;
+    return h > 0 ? h : 0; /* NaN: 0 */
+}
+
+int hl_flow_batch_pays(hl_tape *f, double atol, double rtol, int lanes, long members,
+                       const double *z0, double t)
+{
+    hl_flow *single;
+    if (members <= 0 || hl_flow_new(&single, f, atol, rtol, NULL) != HL_OK)
+        return 0;
+    int p = hl_flow_order(single);
+    hl_flow_free(single);
+    double h = first_step(f, p, atol, rtol, z0);
+    double steps = h > 0 ? ceil(fabs(t) / h) : 0; /* +inf: at rest, one step */
+    double uses = fmin(steps * (double)members, 1e18);
+    return steps > 0 && hl_tape_batch_pays(f, p, lanes, (long)fmax(uses, 1));
 }
 
 void hl_flow_batch_free(hl_flow_batch *b)
@@ -103,6 +146,7 @@ void hl_flow_batch_free(hl_flow_batch *b)
     free(b->zt);
     free(b->dz);
     free(b->fz);
+    free(b->zo);
     hl_tape_batch_free(b->tb);
     free(b);
 }
@@ -262,18 +306,17 @@ static void lane_size(hl_flow_batch *b, lane *ln, int l, hl_status *st, hl_error
 }
 
 /* The second half, after advance_all: lane l's new state kept, its time
- * moved.  1 when the member is done (*st its status), else 0. */
-static int lane_step(hl_flow_batch *b, lane *ln, int l, hl_status *st, hl_error *err)
+ * moved (flow.c's drive, the rest of the turn).  HL_OK, or the status
+ * that ends its member. */
+static hl_status lane_step(hl_flow_batch *b, lane *ln, int l, hl_error *err)
 {
     const int n = b->n, L = b->L;
     double h = ln->dir * b->h[l], rem = ln->dir * ((ln->tend - ln->thi) - ln->tlo);
     int last = h == rem;
     for (int i = 0; i < n; i++)
-        if (!isfinite(b->znew[i * L + l])) {
-            *st = hl_error_set(err, HL_EDOM, NULL, -1, 0, "the solution is not finite at t = %.17g",
-                               ln->thi + ln->dir * h);
-            return 1;
-        }
+        if (!isfinite(b->znew[i * L + l]))
+            return hl_error_set(err, HL_EDOM, NULL, -1, 0,
+                                "the solution is not finite at t = %.17g", ln->thi + ln->dir * h);
     for (int i = 0; i < n; i++) {
         b->z[i * L + l] = b->znew[i * L + l];
         b->zlo[i * L + l] = b->lonew[i * L + l];
@@ -286,20 +329,22 @@ static int lane_step(hl_flow_batch *b, lane *ln, int l, hl_status *st, hl_error 
         time_add(&ln->thi, &ln->tlo, ln->dir * h);
     }
     double done;
-    if (hl_flow_stalled(&ln->pace, h, &done)) {
-        *st = hl_flow_no_progress(err, done, ln->thi);
-        return 1;
-    }
-    *st = HL_OK;
-    return ln->dir * ((ln->tend - ln->thi) - ln->tlo) <= 0;
+    if (hl_flow_stalled(&ln->pace, h, &done))
+        return hl_flow_no_progress(err, done, ln->thi);
+    return HL_OK;
 }
 
 /* ---- the members through the lanes ------------------------------------------- */
 
 typedef struct members {
     int B, next;
-    double *t;
-    const double *t1;
+    double *t;        /* evolve: the times, in and out; grid: out, or NULL */
+    const double *t1; /* evolve: the ends */
+    const double *dt; /* grid: the spacing (NULL: evolve, no outputs) */
+    const long *k0, *k1;
+    long segment;
+    hl_flow_batch_fn fn;
+    void *arg;
     double *z;
     hl_status *status;
     long *nsteps;
@@ -313,7 +358,8 @@ static void finish(hl_flow_batch *b, lane *ln, members *m, hl_status st, const h
     int i = ln->member, l = (int)(ln - b->lanes);
     for (int c = 0; c < b->n; c++)
         m->z[(size_t)i * b->n + c] = b->z[c * b->L + l];
-    m->t[i] = ln->thi + ln->tlo;
+    if (m->t != NULL)
+        m->t[i] = ln->thi + ln->tlo;
     m->status[i] = st;
     if (m->nsteps != NULL)
         m->nsteps[i] = ln->nsteps;
@@ -330,29 +376,138 @@ static void finish(hl_flow_batch *b, lane *ln, members *m, hl_status st, const h
     ln->member = -1;
 }
 
+static double *lane_out(hl_flow_batch *b, int l)
+{
+    return b->zo + (size_t)l * b->n;
+}
+
+/* The time of the lane's next output (its grid's k * dt, as
+ * hl_run_adaptive writes its output times) */
+static double next_out(const lane *ln)
+{
+    return (double)ln->k * ln->dt;
+}
+
+/* flow.c's drive at the top of its loop: the outputs at or before the
+ * lane's time, with its state.  0 or the callback's return. */
+static int outputs_before(hl_flow_batch *b, lane *ln, int l, members *m, hl_error *e)
+{
+    if (m->dt == NULL)
+        return 0;
+    double *zo = lane_out(b, l);
+    for (; ln->k <= ln->kseg && ln->dir * ((next_out(ln) - ln->thi) - ln->tlo) <= 0; ln->k++) {
+        for (int i = 0; i < b->n; i++)
+            zo[i] = b->z[i * b->L + l];
+        int st = m->fn(ln->member, ln->k, next_out(ln), zo, e, m->arg);
+        if (st != 0)
+            return st;
+    }
+    return 0;
+}
+
+/* flow.c's step_outputs (without events): the outputs inside lane l's
+ * step, on the step's polynomial.  0 or the callback's return. */
+static int outputs_in_step(hl_flow_batch *b, lane *ln, int l, members *m, hl_error *e)
+{
+    if (m->dt == NULL)
+        return 0;
+    double h = ln->dir * b->h[l], tau;
+    double *zo = lane_out(b, l);
+    int gathered = 0;
+    for (; ln->k <= ln->kseg && (tau = ln->dir * ((next_out(ln) - ln->thi) - ln->tlo)) <= h;
+         ln->k++) {
+        if (!gathered)
+            gather(b, l), gathered = 1;
+        horner(zo, b->coef, b->n, b->p, ln->dir * tau);
+        int st = m->fn(ln->member, ln->k, next_out(ln), zo, e, m->arg);
+        if (st != 0)
+            return st;
+    }
+    return 0;
+}
+
+/* The lane's member from (thi, its state), as a call of flow.c's drive
+ * begins: the carried rounding and the first step's check afresh. */
+static void begin(hl_flow_batch *b, lane *ln, int l, const double *z)
+{
+    for (int c = 0; c < b->n; c++) {
+        b->z[c * b->L + l] = z[c];
+        b->zlo[c * b->L + l] = 0;
+    }
+    ln->tlo = 0;
+    ln->dir = ln->tend >= ln->thi ? 1 : -1;
+    ln->first = 1;
+}
+
+/* The next segment of a grid member: from its last output, as
+ * hl_run_adaptive's next hl_flow_run (the pace goes on, as the flow's). */
+static void next_segment(hl_flow_batch *b, lane *ln, int l, members *m)
+{
+    long left = ln->kend - ln->kseg;
+    ln->thi = (double)ln->kseg * ln->dt;
+    ln->kseg += m->segment > 0 && m->segment < left ? m->segment : left;
+    ln->tend = (double)ln->kseg * ln->dt;
+    begin(b, ln, l, lane_out(b, l));
+}
+
+/* The lane between two steps: its outputs due, and when its segment is
+ * at its end, the next one or the member finished.  1 if it still needs
+ * a step. */
+static int settle(hl_flow_batch *b, lane *ln, members *m)
+{
+    int l = (int)(ln - b->lanes);
+    for (;;) {
+        hl_error e;
+        int st = outputs_before(b, ln, l, m, &e);
+        if (st != 0) {
+            finish(b, ln, m, st, &e);
+            return 0;
+        }
+        if (ln->dir * ((ln->tend - ln->thi) - ln->tlo) > 0)
+            return 1;
+        if (m->dt == NULL || ln->kseg >= ln->kend) {
+            finish(b, ln, m, HL_OK, NULL);
+            return 0;
+        }
+        next_segment(b, ln, l, m);
+    }
+}
+
 /* Lane ln takes the next member that needs a step (members already at
  * their end, or with times that are not finite, finish at once). */
 static void take_next(hl_flow_batch *b, lane *ln, members *m)
 {
+    int l = (int)(ln - b->lanes);
     while (ln->member < 0 && m->next < m->B) {
         int i = m->next++;
         ln->member = i;
-        ln->thi = m->t[i];
-        ln->tlo = 0;
-        ln->tend = m->t1[i];
-        ln->dir = ln->tend >= ln->thi ? 1 : -1;
-        for (int c = 0, l = (int)(ln - b->lanes); c < b->n; c++) {
-            b->z[c * b->L + l] = m->z[(size_t)i * b->n + c];
-            b->zlo[c * b->L + l] = 0;
+        const double *z = m->z + (size_t)i * b->n;
+        if (m->dt != NULL) {
+            ln->dt = m->dt[i];
+            ln->k = m->k0[i] + 1;
+            ln->kseg = ln->kend = m->k0[i];
+            ln->thi = ln->tend = (double)m->k0[i] * ln->dt;
+            memcpy(lane_out(b, l), z, (size_t)b->n * sizeof *z);
+        } else {
+            ln->thi = m->t[i];
+            ln->tend = m->t1[i];
         }
-        ln->first = 1;
+        begin(b, ln, l, z);
         ln->nsteps = 0;
         ln->pace = (hl_flow_pace){0};
         hl_error e;
         if (!isfinite(ln->thi) || !isfinite(ln->tend))
             finish(b, ln, m, hl_error_set(&e, HL_EINVAL, NULL, -1, 0, "times must be finite"), &e);
-        else if (ln->dir * ((ln->tend - ln->thi) - ln->tlo) <= 0)
-            finish(b, ln, m, HL_OK, NULL);
+        else if (m->dt != NULL &&
+                 !(ln->dt > 0 && m->k1[i] >= m->k0[i] && isfinite((double)m->k1[i] * ln->dt)))
+            finish(b, ln, m,
+                   hl_error_set(&e, HL_EINVAL, NULL, -1, 0,
+                                "a grid needs dt > 0 and k1 >= k0, its times finite"),
+                   &e);
+        else {
+            ln->kend = m->dt != NULL ? m->k1[i] : 0;
+            settle(b, ln, m);
+        }
     }
 }
 
@@ -369,41 +524,92 @@ static void load_states(hl_flow_batch *b, int busy)
     }
 }
 
-hl_status hl_flow_batch_evolve(hl_flow_batch *b, int B, double *t, const double *t1, double *z,
-                               hl_status *status, long *nsteps, hl_error *errs, hl_error *err)
+/* One turn of every busy lane: the steps' sizes and the outputs inside
+ * them, the states advanced side by side, the lanes settled. */
+static void turn(hl_flow_batch *b, members *m, int busy)
 {
-    if (B < 0)
-        return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "a negative number of members (%d)", B);
-    members m = {B, 0, t, t1, z, status, nsteps, errs, B, {0}};
+    load_states(b, busy);
+    hl_tape_batch_ode(b->tb);
+    hl_status st;
+    hl_error e;
+    for (int l = 0; l < b->L; l++) {
+        lane *ln = &b->lanes[l];
+        if (ln->member < 0)
+            continue;
+        lane_size(b, ln, l, &st, &e);
+        if (st == HL_OK)
+            st = outputs_in_step(b, ln, l, m, &e);
+        if (st != HL_OK) {
+            b->h[l] = 0; /* no step */
+            finish(b, ln, m, st, &e);
+        }
+    }
+    advance_all(b);
+    for (int l = 0; l < b->L; l++) {
+        lane *ln = &b->lanes[l];
+        if (ln->member < 0)
+            continue;
+        if ((st = lane_step(b, ln, l, &e)) != HL_OK)
+            finish(b, ln, m, st, &e);
+        else
+            settle(b, ln, m);
+    }
+}
+
+static hl_status run_members(hl_flow_batch *b, members *m, hl_error *err)
+{
     for (;;) {
         int busy = -1;
         for (int l = 0; l < b->L; l++) {
-            take_next(b, &b->lanes[l], &m);
+            take_next(b, &b->lanes[l], m);
             if (b->lanes[l].member >= 0)
                 busy = l;
         }
         if (busy < 0)
             break;
-        load_states(b, busy);
-        hl_tape_batch_ode(b->tb);
-        hl_status st;
-        hl_error e;
-        for (int l = 0; l < b->L; l++) {
-            lane *ln = &b->lanes[l];
-            if (ln->member < 0)
-                continue;
-            lane_size(b, ln, l, &st, &e);
-            if (st != HL_OK)
-                finish(b, ln, &m, st, &e); /* b->h[l] = 0: no step */
-        }
-        advance_all(b);
-        for (int l = 0; l < b->L; l++) {
-            lane *ln = &b->lanes[l];
-            if (ln->member >= 0 && lane_step(b, ln, l, &st, &e))
-                finish(b, ln, &m, st, &e);
-        }
+        turn(b, m, busy);
     }
-    if (m.failed == B)
+    if (m->failed == m->B)
         return HL_OK;
-    return hl_error_set(err, m.first.status, NULL, -1, 0, "member %d: %s", m.failed, m.first.msg);
+    return hl_error_set(err, m->first.status, NULL, -1, 0, "member %d: %s", m->failed,
+                        m->first.msg);
+}
+
+hl_status hl_flow_batch_evolve(hl_flow_batch *b, int B, double *t, const double *t1, double *z,
+                               hl_status *status, long *nsteps, hl_error *errs, hl_error *err)
+{
+    if (B < 0)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "a negative number of members (%d)", B);
+    members m = {.B = B,
+                 .t = t,
+                 .t1 = t1,
+                 .z = z,
+                 .status = status,
+                 .nsteps = nsteps,
+                 .errs = errs,
+                 .failed = B};
+    return run_members(b, &m, err);
+}
+
+hl_status hl_flow_batch_grid(hl_flow_batch *b, int B, const double *dt, const long *k0,
+                             const long *k1, long segment, double *z, hl_flow_batch_fn fn,
+                             void *arg, hl_status *status, long *nsteps, hl_error *errs,
+                             hl_error *err)
+{
+    if (B < 0 || fn == NULL)
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
+                            "a grid needs B >= 0 members (%d) and a callback", B);
+    members m = {.B = B,
+                 .dt = dt,
+                 .k0 = k0,
+                 .k1 = k1,
+                 .segment = segment,
+                 .fn = fn,
+                 .arg = arg,
+                 .z = z,
+                 .status = status,
+                 .nsteps = nsteps,
+                 .errs = errs,
+                 .failed = B};
+    return run_members(b, &m, err);
 }
