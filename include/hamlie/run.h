@@ -195,6 +195,29 @@ hl_status hl_run_fixed(hl_run *r, const double *z0, double dt, double t, long ev
 hl_status hl_run_adaptive(hl_run *r, const double *z0, double tol, double dt, double t, long every,
                           hl_run_fn fn, void *arg, hl_run_stats *stats, hl_error *err);
 
+/* ---- many adaptive runs side by side (flow.h's batch) ----------------------
+ * hl_run_adaptive for B members of one run (its system; no scheme, events
+ * or progress callback) at once, their Taylor steps in `lanes` SIMD lanes:
+ * each member's stats, status, message and state at the last row are its
+ * own hl_run_adaptive's (no rows delivered), bit for bit.  The lanes
+ * borrow r (and its scratch: one thread).  Compiling the lanes' recursion
+ * costs about a second unless the disk cache holds it: ask
+ * hl_run_lanes_pay first. */
+typedef struct hl_run_lanes hl_run_lanes;
+/* 1 if `members` members to t in `lanes` lanes repay the lanes' compiled
+ * code (kept in the disk cache, or compiled), their steps foreseen from
+ * the first step at z0 (tape.h's cost model: counts, not clocks). */
+int hl_run_lanes_pay(hl_run *r, double tol, int lanes, long members, const double *z0, double t);
+hl_status hl_run_lanes_new(hl_run_lanes **out, hl_run *r, double tol, int lanes, hl_error *err);
+void hl_run_lanes_free(hl_run_lanes *lanes);          /* NULL is a no-op */
+int hl_run_lanes_compiled(const hl_run_lanes *lanes); /* 0: the lanes run one by one */
+/* z0, z: B * 2N (z: each member's state at its last row, as hl_run_state);
+ * dt: B output spacings; stats, status, errs: B each.  Returns the first
+ * failing member's status, or HL_OK. */
+hl_status hl_run_adaptive_lanes(hl_run_lanes *lanes, int B, const double *z0, const double *dt,
+                                double t, double *z, hl_run_stats *stats, hl_status *status,
+                                hl_error *errs);
+
 /* ---- Arb: the adaptive run at about `digits` decimal digits --------------
  * hl_flow_arb (flow.h) with rows at t_k = T k / n (T from its text, exact
  * when it is a decimal), H and the observers evaluated in Arb.  Values are
