@@ -1,11 +1,14 @@
 /* One member of a sweep -> one row: the run of its scheme from its point
- * (hl_run_fixed, or hl_run_adaptive for "lie"), the observed order from dt
+ * (hl_run_fixed, or hl_run_adaptive for "lie": several at once in SIMD
+ * lanes, hl_run_adaptive_lanes, where that pays), the observed order from dt
  * and dt/2, and the chaos indicators of its (point, paramset), computed
  * once and kept while the members of that group follow.  A worker belongs
  * to one thread: it holds a system, the runs and a chaos object per
  * paramset, built when first needed.  A failure is the row's status and
  * reason, never the sweep's. */
 #include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,7 +25,19 @@ typedef struct paramset_ctx {
     hl_scheme **sch; /* nschemes (NULL for "lie") */
     hl_run **run;    /* nschemes */
     hl_chaos *chaos; /* when spec.chaos */
+    hl_run_lanes **lanes; /* nschemes: a lie scheme's lanes, when they pay */
+    char *lanes_tried;    /* nschemes: asked once */
 } paramset_ctx;
+
+/* The rows of lie members run in lanes (sweep_worker_prepare), until
+ * sweep_member hands them out. */
+typedef struct ready_rows {
+    long n, cap;
+    long *member;
+    double *row; /* n * ncols */
+    hl_status *status;
+    char *reason; /* n * HL_SWEEP_REASON */
+} ready_rows;
 
 struct sweep_worker {
     const hl_sweep *sw;
@@ -34,6 +49,8 @@ struct sweep_worker {
     double megno, mlce;
     hl_status chaos_status;
     char chaos_reason[HL_SWEEP_REASON];
+    int lanes_mode; /* SWEEP_LANES_* */
+    ready_rows ready;
 };
 
 sweep_worker *sweep_worker_new(const hl_sweep *sw)
@@ -43,17 +60,21 @@ sweep_worker *sweep_worker_new(const hl_sweep *sw)
     w->ctx = hl_xcalloc((size_t)sw->nparamsets, sizeof *w->ctx);
     w->z0 = hl_xcalloc((size_t)(2 * sw->N), sizeof *w->z0);
     w->chaos_point = -1;
+    w->lanes_mode = sweep_has_lie(sw) ? sweep_lanes_mode() : SWEEP_LANES_OFF;
     return w;
 }
 
 static void ctx_clear(paramset_ctx *c, int nschemes)
 {
     for (int i = 0; c->run != NULL && i < nschemes; i++) {
+        hl_run_lanes_free(c->lanes[i]);
         hl_run_free(c->run[i]);
         hl_scheme_free(c->sch[i]);
     }
     free(c->run);
     free(c->sch);
+    free(c->lanes);
+    free(c->lanes_tried);
     hl_chaos_free(c->chaos);
     hl_system_free(c->sys);
     memset(c, 0, sizeof *c);
@@ -67,6 +88,7 @@ void sweep_worker_free(sweep_worker *w)
         ctx_clear(&w->ctx[i], w->sw->nschemes);
     free(w->ctx);
     free(w->z0);
+    free(w->ready.member), free(w->ready.row), free(w->ready.status), free(w->ready.reason);
     free(w);
 }
 
@@ -87,6 +109,8 @@ static hl_status build_ctx(paramset_ctx *c, const hl_sweep *sw, long paramset, h
     int st = sweep_system(&c->sys, sw, paramset, err);
     c->sch = hl_xcalloc((size_t)sw->nschemes, sizeof *c->sch);
     c->run = hl_xcalloc((size_t)sw->nschemes, sizeof *c->run);
+    c->lanes = hl_xcalloc((size_t)sw->nschemes, sizeof *c->lanes);
+    c->lanes_tried = hl_xcalloc((size_t)sw->nschemes, 1);
     for (int i = 0; st == HL_OK && i < sw->nschemes; i++) {
         if (strcmp(sw->scheme[i], "lie") != 0)
             st = hl_scheme_new(&c->sch[i], sw->scheme[i], 4, c->sys, err);
@@ -217,6 +241,143 @@ static hl_status run_member(sweep_worker *w, paramset_ctx *c, sweep_where at, do
     return st;
 }
 
+/* ---- lie members in lanes --------------------------------------------------- */
+
+static int fits_lanes(const hl_sweep *sw, sweep_where at)
+{
+    return sweep_is_lie(sw, at.scheme);
+}
+
+/* The lanes of (paramset, lie scheme): made the first time they pay for
+ * the sweep's members of that pair (from the first step at z0), or never.
+ * Made one thread at a time: with the disk cache the first compiles and
+ * the others load its code, instead of each compiling for a second. */
+static hl_run_lanes *lanes_for(sweep_worker *w, paramset_ctx *c, int scheme, const double *z0)
+{
+    static pthread_mutex_t making = PTHREAD_MUTEX_INITIALIZER;
+    const hl_sweep *sw = w->sw;
+    if (c->lanes_tried[scheme])
+        return c->lanes[scheme];
+    c->lanes_tried[scheme] = 1;
+    long members = sw->npoints * sw->ndts; /* of this paramset and scheme */
+    if (w->lanes_mode == SWEEP_LANES_AUTO &&
+        !hl_run_lanes_pay(c->run[scheme], sw->spec.tol, SWEEP_LANES, members, z0, sw->spec.t))
+        return NULL;
+    hl_error err;
+    pthread_mutex_lock(&making);
+    if (hl_run_lanes_new(&c->lanes[scheme], c->run[scheme], sw->spec.tol, SWEEP_LANES, &err) !=
+        HL_OK)
+        c->lanes[scheme] = NULL; /* the members run one at a time */
+    pthread_mutex_unlock(&making);
+    return c->lanes[scheme];
+}
+
+/* A slot for member m's row among the ready ones. */
+static long ready_slot(sweep_worker *w, long m)
+{
+    ready_rows *r = &w->ready;
+    int nc = w->sw->ncols;
+    if (r->n == r->cap) {
+        r->cap = r->cap ? 2 * r->cap : 64;
+        r->member = hl_xrealloc(r->member, (size_t)r->cap * sizeof *r->member);
+        r->row = hl_xrealloc(r->row, (size_t)r->cap * nc * sizeof *r->row);
+        r->status = hl_xrealloc(r->status, (size_t)r->cap * sizeof *r->status);
+        r->reason = hl_xrealloc(r->reason, (size_t)r->cap * HL_SWEEP_REASON);
+    }
+    r->member[r->n] = m;
+    r->reason[r->n * HL_SWEEP_REASON] = '\0';
+    return r->n++;
+}
+
+/* 1 and member m's row, status and reason if the lanes ran it. */
+static int take_ready(sweep_worker *w, long m, double *row, hl_status *status, char *reason)
+{
+    ready_rows *r = &w->ready;
+    for (long i = 0; i < r->n; i++)
+        if (r->member[i] == m) {
+            memcpy(row, r->row + i * w->sw->ncols, (size_t)w->sw->ncols * sizeof *row);
+            *status = r->status[i];
+            memcpy(reason, r->reason + i * HL_SWEEP_REASON, HL_SWEEP_REASON);
+            return 1;
+        }
+    return 0;
+}
+
+static atomic_long lanes_members; /* run in lanes by this process */
+
+long sweep_lanes_members(void)
+{
+    return atomic_load(&lanes_members);
+}
+
+/* Members ms[0..B-1], lie members of one paramset and scheme, through the
+ * lanes: each row as run_member makes it. */
+static void run_in_lanes(sweep_worker *w, paramset_ctx *c, hl_run_lanes *ls, const long *ms, int B)
+{
+    const hl_sweep *sw = w->sw;
+    const int n2 = 2 * sw->N, nc = sw->ncols;
+    double *z0 = hl_xcalloc((size_t)B * n2 + 1, sizeof *z0),
+           *z = hl_xcalloc((size_t)B * n2 + 1, sizeof *z);
+    double *dt = hl_xcalloc((size_t)B + 1, sizeof *dt);
+    long *slot = hl_xcalloc((size_t)B + 1, sizeof *slot);
+    hl_run_stats *s = hl_xcalloc((size_t)B + 1, sizeof *s);
+    hl_status *st = hl_xcalloc((size_t)B + 1, sizeof *st);
+    hl_error *errs = hl_xcalloc((size_t)B + 1, sizeof *errs);
+    int nb = 0;
+    for (int j = 0; j < B; j++) { /* as run_member: the start checked first */
+        sweep_where at = sweep_locate(sw, ms[j]);
+        long k = ready_slot(w, ms[j]);
+        double *row = w->ready.row + k * nc;
+        sweep_point(sw, at.point, z0 + (size_t)nb * n2);
+        fill_inputs(sw, ms[j], at, z0 + (size_t)nb * n2, row);
+        hl_error err;
+        w->ready.status[k] = hl_run_check_start(c->run[at.scheme], z0 + (size_t)nb * n2, &err);
+        if (w->ready.status[k] != HL_OK) {
+            set_reason(w->ready.reason + k * HL_SWEEP_REASON, "", &err);
+            continue;
+        }
+        dt[nb] = sw->dt[at.dt];
+        slot[nb++] = k;
+    }
+    hl_run_adaptive_lanes(ls, nb, z0, dt, sw->spec.t, z, s, st, errs);
+    atomic_fetch_add(&lanes_members, nb);
+    for (int j = 0; j < nb; j++) {
+        double *row = w->ready.row + slot[j] * nc;
+        fill_stats(sw, &s[j], z + (size_t)j * n2, row);
+        row[sw->c_t + 5] = row[sw->c_t + 6] = NAN; /* no reference for lie */
+        w->ready.status[slot[j]] = st[j];
+        if (st[j] != HL_OK)
+            set_reason(w->ready.reason + slot[j] * HL_SWEEP_REASON, "", &errs[j]);
+    }
+    free(z0), free(z), free(dt), free(slot), free(s), free(st), free(errs);
+}
+
+void sweep_worker_prepare(sweep_worker *w, const long *list, long n)
+{
+    const hl_sweep *sw = w->sw;
+    w->ready.n = 0;
+    if (w->lanes_mode == SWEEP_LANES_OFF || n <= 0)
+        return;
+    long *order = hl_xcalloc((size_t)n + 1, sizeof *order);
+    long *start = hl_xcalloc((size_t)n + 2, sizeof *start);
+    long *ms = hl_xcalloc((size_t)n + 1, sizeof *ms);
+    long ng = sweep_lane_groups(sw, list, n, fits_lanes, 0, order, start);
+    for (long g = 0; g < ng; g++) {
+        int B = (int)(start[g + 1] - start[g]);
+        for (int j = 0; j < B; j++)
+            ms[j] = list[order[start[g] + j]];
+        sweep_where at = sweep_locate(sw, ms[0]);
+        paramset_ctx *c = get_ctx(w, at.paramset);
+        if (c->status != HL_OK)
+            continue; /* sweep_member gives each its ctx's failure */
+        sweep_point(sw, at.point, w->z0);
+        hl_run_lanes *ls = lanes_for(w, c, at.scheme, w->z0);
+        if (ls != NULL)
+            run_in_lanes(w, c, ls, ms, B);
+    }
+    free(order), free(start), free(ms);
+}
+
 void sweep_member(sweep_worker *w, long m, double *row, hl_status *status, char *reason)
 {
     const hl_sweep *sw = w->sw;
@@ -230,13 +391,15 @@ void sweep_member(sweep_worker *w, long m, double *row, hl_status *status, char 
         snprintf(reason, HL_SWEEP_REASON, "%s", c->reason);
         return;
     }
-    hl_error err;
-    hl_error_clear(&err);
-    *status = run_member(w, c, at, row, &err);
-    if (*status != HL_OK) {
-        set_reason(reason, "", &err);
-        return;
+    if (!take_ready(w, m, row, status, reason)) {
+        hl_error err;
+        hl_error_clear(&err);
+        *status = run_member(w, c, at, row, &err);
+        if (*status != HL_OK)
+            set_reason(reason, "", &err);
     }
+    if (*status != HL_OK)
+        return;
     if (sw->spec.chaos) {
         chaos_of(w, c, at, row);
         *status = w->chaos_status;

@@ -3,7 +3,10 @@
  * chaos indicators are computed once per unit — handed out one at a time
  * through an atomic counter.  Each thread has its own worker (system, runs,
  * chaos object); results and progress go out one call at a time under a
- * mutex.  A row depends only on its member, never on the thread. */
+ * mutex.  A row depends only on its member, never on the thread.  With lie
+ * members to run in SIMD lanes (lanes.c) a unit is several such runs,
+ * enough lie members to fill the lanes a few times over, and the worker
+ * runs them in lanes before handing the unit's rows out in order. */
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
@@ -17,7 +20,7 @@ typedef struct pool {
     const long *members; /* NULL: 0 .. n-1 */
     long n;
     long *unit; /* nunits + 1 starts in the list */
-    long nunits;
+    long nunits, longest; /* units, and the longest's members */
     atomic_long next; /* the next unit to hand out */
     atomic_int stop;  /* a callback asked to stop */
     pthread_mutex_t lock;
@@ -39,14 +42,43 @@ static long group_of(const hl_sweep *sw, long m)
     return m / ((long)sw->nschemes * sw->ndts);
 }
 
-static void cut_units(pool *p)
+static int lie_at(const pool *p, long i)
+{
+    return sweep_is_lie(p->sw, sweep_locate(p->sw, member_at(p, i)).scheme);
+}
+
+/* Units of whole groups; with lanes, groups joined until a unit holds
+ * `per_unit` lie members (per_unit 0: a group each). */
+static void cut_units(pool *p, long per_unit)
 {
     p->unit = hl_xcalloc((size_t)p->n + 1, sizeof *p->unit);
     p->nunits = 0;
-    for (long i = 0; i < p->n; i++)
-        if (i == 0 || group_of(p->sw, member_at(p, i)) != group_of(p->sw, member_at(p, i - 1)))
+    long lie = 0; /* in the unit so far */
+    for (long i = 0; i < p->n; i++) {
+        int new_group =
+            i == 0 || group_of(p->sw, member_at(p, i)) != group_of(p->sw, member_at(p, i - 1));
+        if (new_group && (i == 0 || lie >= per_unit)) {
             p->unit[p->nunits++] = i;
+            lie = 0;
+        }
+        lie += per_unit > 0 && lie_at(p, i);
+    }
     p->unit[p->nunits] = p->n;
+    p->longest = 0;
+    for (long u = 0; u < p->nunits; u++)
+        if (p->unit[u + 1] - p->unit[u] > p->longest)
+            p->longest = p->unit[u + 1] - p->unit[u];
+}
+
+/* The lie members per unit when lanes may run them, else 0. */
+static long lanes_per_unit(const pool *p, int threads)
+{
+    if (!sweep_has_lie(p->sw) || sweep_lanes_mode() == SWEEP_LANES_OFF)
+        return 0;
+    long lie = 0;
+    for (long i = 0; i < p->n; i++)
+        lie += lie_at(p, i);
+    return sweep_lanes_unit(p->sw, lie, threads);
 }
 
 /* Hands one result out, under the lock. */
@@ -67,6 +99,7 @@ static void *work(void *arg)
     pool *p = arg;
     sweep_worker *w = sweep_worker_new(p->sw);
     double *row = hl_xcalloc((size_t)p->sw->ncols, sizeof *row);
+    long *list = hl_xcalloc((size_t)p->longest + 1, sizeof *list);
     hl_sweep_result r;
     memset(&r, 0, sizeof r);
     r.row = row;
@@ -74,6 +107,9 @@ static void *work(void *arg)
         long u = atomic_fetch_add(&p->next, 1);
         if (u >= p->nunits || atomic_load(&p->stop))
             break;
+        for (long i = p->unit[u]; i < p->unit[u + 1]; i++)
+            list[i - p->unit[u]] = member_at(p, i);
+        sweep_worker_prepare(w, list, p->unit[u + 1] - p->unit[u]);
         for (long i = p->unit[u]; i < p->unit[u + 1] && !atomic_load(&p->stop); i++) {
             r.member = member_at(p, i);
             sweep_member(w, r.member, row, &r.status, r.reason);
@@ -81,6 +117,7 @@ static void *work(void *arg)
         }
     }
     free(row);
+    free(list);
     sweep_worker_free(w);
     return NULL;
 }
@@ -140,7 +177,7 @@ hl_status hl_sweep_run(hl_sweep *sw, const long *members, long n, int threads, h
     atomic_init(&p.next, 0);
     atomic_init(&p.stop, 0);
     pthread_mutex_init(&p.lock, NULL);
-    cut_units(&p);
+    cut_units(&p, lanes_per_unit(&p, threads));
     if (threads > p.nunits)
         threads = p.nunits > 0 ? (int)p.nunits : 1;
     st = run_threads(&p, threads, err);

@@ -108,6 +108,30 @@ void sweep_worker_free(sweep_worker *w);
  * of one group share them. */
 void sweep_member(sweep_worker *w, long m, double *row, hl_status *status, char *reason);
 
+/* Runs the lie members among list[0..n-1] (a work unit) in SIMD lanes
+ * where that pays (lanes.c), keeping their rows for sweep_member. */
+void sweep_worker_prepare(sweep_worker *w, const long *list, long n);
+/* The members this process has run in lanes (tests). */
+long sweep_lanes_members(void);
+
+/* lanes.c: which members share SIMD lanes.  HAMLIE_SWEEP_BATCH=0 never,
+ * =1 always (where they can: the same rows either way), else where the
+ * cost model says they pay. */
+enum { SWEEP_LANES_OFF, SWEEP_LANES_ON, SWEEP_LANES_AUTO };
+#define SWEEP_LANES 4 /* AVX2's 4 doubles (8 lanes gained 6% more, bench/taylor_batch.sh) */
+int sweep_lanes_mode(void);
+int sweep_is_lie(const hl_sweep *sw, int scheme);
+int sweep_has_lie(const hl_sweep *sw);
+/* The members of list[0..n-1] that fit (fits), in groups of one paramset
+ * and scheme (and dt if same_dt), each in list order: order[] their
+ * positions in list, group after group, start[g] group g's first (start
+ * has ngroups + 1 entries; both hold n + 1).  Returns ngroups. */
+long sweep_lane_groups(const hl_sweep *sw, const long *list, long n,
+                       int (*fits)(const hl_sweep *sw, sweep_where at), int same_dt, long *order,
+                       long *start);
+/* How many lie members a work unit should hold for the lanes. */
+long sweep_lanes_unit(const hl_sweep *sw, long lie_members, int threads);
+
 /* write.c / sweep_h5.c */
 hl_status sweep_write_csv(const hl_sweep *sw, const hl_sweep_table *tab, const char *path,
                           hl_error *err);

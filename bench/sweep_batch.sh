@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# The sweep's lie members in SIMD lanes (issue 15 part 5): members per
+# second of `hamlie sweep --scheme lie` on Henon-Heiles (tol 1e-15, t =
+# 1000, random points on invariant curves and in the sea below E = 1/6),
+# one thread, with the lanes (HAMLIE_SWEEP_BATCH=1) against one member at
+# a time (=0), and the ratio; the two CSVs compared byte for byte.
+#
+# CPU time of the whole process (user + sys, /usr/bin/time), the best of
+# reps; both modes in this one script (the machine is shared: compare
+# within a run).  The lanes' code is compiled once into a fresh cache
+# first (that run timed on its own: "compile"); the modes then load it.
+# "single-native": one at a time with the single recursion's compiled code
+# kept in the cache (a long `hamlie run` put it there), which the sweep's
+# runs load: the fastest one-at-a-time path.
+#
+# Usage: bench/sweep_batch.sh [build-dir] [members] [reps] [dt]
+#   defaults: build, 128, 3, 1000 (one row per member: max_dH at t = 0
+#   and 1000; dt = 1 measures H at 1000 rows each)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${1:-build}
+M=${2:-128}
+reps=${3:-3}
+dt=${4:-1000}
+out=$build/sweep-batch
+mkdir -p "$out"
+export HAMLIE_CACHE_DIR=$out/cache
+rm -rf "$HAMLIE_CACHE_DIR"
+hamlie=$build/hamlie
+HH='(px^2+py^2)/2 + (x^2+y^2)/2 + x^2*y - y^3/3'
+args=(sweep -H "$HH" --random 'x=0,y=-0.25:0.25,px=-0.35:0.35,py=0.2' --count "$M" --seed 5
+    --scheme lie --tol 1e-15 --t 1000 --dt "$dt" --threads 1)
+
+cmake --build "$build" -j2 --target hamlie_cli >/dev/null
+
+# cpu MODE CSV: the CPU seconds of one sweep
+cpu() {
+    HAMLIE_SWEEP_BATCH=$1 /usr/bin/time -f "%U %S" -o "$out/time" "$hamlie" "${args[@]}" \
+        --out "$2" >/dev/null 2>&1
+    awk '{printf "%.3f\n", $1 + $2}' "$out/time"
+}
+best() { # best MODE CSV: the least of reps
+    local b=
+    for _ in $(seq "$reps"); do
+        local c
+        c=$(cpu "$1" "$2")
+        b=$(awk -v a="$b" -v c="$c" 'BEGIN {print (a == "" || c < a) ? c : a}')
+    done
+    echo "$b"
+}
+rate() { awk -v m="$M" -v s="$1" 'BEGIN {printf "%.0f", m / s}'; }
+
+echo "# bench/sweep_batch.sh  $(date -u '+%F %T UTC')  commit $(git rev-parse --short HEAD)"
+echo "# members $M  dt $dt  reps $reps  load $(cut -d' ' -f1-3 /proc/loadavg)  cpus $(nproc)"
+compile=$(cpu 1 "$out/lanes.csv")
+lanes=$(best 1 "$out/lanes.csv")
+single=$(best 0 "$out/single.csv")
+cmp -s "$out/lanes.csv" "$out/single.csv" && same=yes || same=NO
+# the single recursion compiled and kept: a long run compiles it
+"$hamlie" run -H "$HH" --scheme lie --tol 1e-15 --t 2e5 --dt 2e5 --init 'x=0,y=0.1,px=0.3,py=0.2' \
+    >/dev/null 2>&1 || true
+native=$(best 0 "$out/native.csv")
+cmp -s "$out/lanes.csv" "$out/native.csv" && same_n=yes || same_n=NO
+echo "mode,cpu_s,members_per_s"
+echo "lanes-4 (first run, compiling),$compile,$(rate "$compile")"
+echo "lanes-4,$lanes,$(rate "$lanes")"
+echo "single-interp,$single,$(rate "$single")"
+echo "single-native,$native,$(rate "$native")"
+awk -v a="$single" -v n="$native" -v b="$lanes" \
+    'BEGIN {printf "# lanes against single-interp: %.2fx; against single-native: %.2fx\n", a / b, n / b}'
+echo "# the same CSV bytes: lanes/single-interp $same, lanes/single-native $same_n"

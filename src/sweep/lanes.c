@@ -1,0 +1,77 @@
+/* Which members of a sweep share SIMD lanes, and when (issue 15 part 5).
+ * The one place that groups members for lanes: the lie members now (the
+ * Taylor integrator's batch, run.h's hl_run_adaptive_lanes), a fixed-step
+ * batch later (same_dt).  A group holds members of one paramset (one
+ * system, one tape) and one scheme; the lanes give each member its own
+ * run's bits, so the grouping, and whether lanes are used at all, only
+ * moves time: the table is the same either way. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "sweep/sweep_impl.h"
+
+int sweep_lanes_mode(void)
+{
+    const char *s = getenv("HAMLIE_SWEEP_BATCH");
+    if (s != NULL && strcmp(s, "0") == 0)
+        return SWEEP_LANES_OFF;
+    if (s != NULL && strcmp(s, "1") == 0)
+        return SWEEP_LANES_ON;
+    return SWEEP_LANES_AUTO;
+}
+
+int sweep_is_lie(const hl_sweep *sw, int scheme)
+{
+    return strcmp(sw->scheme[scheme], "lie") == 0;
+}
+
+int sweep_has_lie(const hl_sweep *sw)
+{
+    for (int i = 0; i < sw->nschemes; i++)
+        if (sweep_is_lie(sw, i))
+            return 1;
+    return 0;
+}
+
+static int same_key(sweep_where a, sweep_where b, int same_dt)
+{
+    return a.paramset == b.paramset && a.scheme == b.scheme && (!same_dt || a.dt == b.dt);
+}
+
+long sweep_lane_groups(const hl_sweep *sw, const long *list, long n,
+                       int (*fits)(const hl_sweep *sw, sweep_where at), int same_dt, long *order,
+                       long *start)
+{
+    /* taken[i]: list[i] already placed (or does not fit); a small unit's
+     * members, so the quadratic scan costs nothing beside their runs */
+    char *taken = calloc((size_t)n + 1, 1);
+    long placed = 0, ngroups = 0;
+    for (long i = 0; i < n; i++) {
+        sweep_where at = sweep_locate(sw, list[i]);
+        if (taken[i] || !fits(sw, at))
+            continue;
+        start[ngroups++] = placed;
+        for (long j = i; j < n; j++) {
+            if (taken[j])
+                continue;
+            sweep_where bt = sweep_locate(sw, list[j]);
+            if (fits(sw, bt) && same_key(at, bt, same_dt)) {
+                taken[j] = 1;
+                order[placed++] = j;
+            }
+        }
+    }
+    start[ngroups] = placed;
+    free(taken);
+    return ngroups;
+}
+
+long sweep_lanes_unit(const hl_sweep *sw, long lie_members, int threads)
+{
+    /* a few units per thread, so that the threads end together, and at
+     * least a round of the lanes each: a lane that finishes early takes the
+     * next member while the unit has one */
+    long u = lie_members / ((long)threads * 4);
+    (void)sw;
+    return u < SWEEP_LANES ? SWEEP_LANES : u > 64 ? 64 : u;
+}
