@@ -219,9 +219,10 @@ hl_status hl_run_fixed(hl_run *r, const double *z0, double dt, double t, long ev
 hl_status hl_run_fixed_batch(hl_run *r, long B, const double *z0, double dt, double t, double *z,
                              hl_run_stats *stats, hl_status *status, hl_error *errs, hl_error *err);
 
-/* The lanes of hl_run_fixed_batch: 0 for the default (4: AVX2's registers
- * hold 4 doubles; bench/run_batch.c), 1 for one member at a time, else a
- * power of 2 up to HL_TAPE_BATCH_MAX_LANES (HL_EINVAL otherwise). */
+/* The lanes of hl_run_fixed_batch: 0 for the default (the machine's vector
+ * width, hl_tape_lanes_native: 4 with AVX2, 8 with AVX-512), 1 for one
+ * member at a time, else a power of 2 up to HL_TAPE_BATCH_MAX_LANES
+ * (HL_EINVAL otherwise).  The results do not depend on it. */
 hl_status hl_run_set_lanes(hl_run *r, int lanes, hl_error *err);
 
 /* The lanes that hl_run_fixed_batch would use for B members over (dt, t):

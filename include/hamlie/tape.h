@@ -399,6 +399,11 @@ double *hl_tape_iter_batch_state(hl_tape_iter_batch *batch);
  * w0 and *dev of hl_tape_iterate_watch).  Returns the steps every lane
  * took (n, or fewer when one lane's next step is not finite). */
 long hl_tape_iter_batch_watch(hl_tape_iter_batch *batch, long n, const double *w0, double *dev);
+/* The lanes that fill this machine's vector registers, which the lanes'
+ * code is compiled for: 8 with AVX-512, 4 with AVX2, else 2 (SSE2).  The
+ * fixed-step batch's default (bench/run_batch.c: Henon-Heiles' Störmer–
+ * Verlet step 2.5 ns a member-step at 4 lanes, 1.6 at 8 on AVX-512). */
+int hl_tape_lanes_native(void);
 
 #ifdef __cplusplus
 }

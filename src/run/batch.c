@@ -22,14 +22,10 @@
 #include "base/buf.h"
 #include "run/run_impl.h"
 
-/* 4 doubles fill AVX2's registers; 8 (AVX-512) measured no faster on the
- * explicit schemes (bench/run_batch.c). */
-#define DEFAULT_LANES 4
-
-/* The lane loop's compilation costs about what the scalar loop's does
- * (bench/run_batch.c: 40-90 ms for the catalog's explicit schemes on one
- * and two degrees of freedom) and saves more per member-step, so the scalar
- * loop's break-even counted in member-steps is a safe bound. */
+/* NOTE: the lanes' loop costs about what the scalar loop costs to compile
+ * and saves more per member-step than the scalar loop does over the
+ * stepper, so the scalar loop's break-even counted in member-steps
+ * (hl_tape_compile_pays) is a safe bound for it. */
 
 hl_status hl_run_set_lanes(hl_run *r, int lanes, hl_error *err)
 {
@@ -43,7 +39,7 @@ hl_status hl_run_set_lanes(hl_run *r, int lanes, hl_error *err)
 
 static int lanes_wanted(const hl_run *r)
 {
-    return r->lanes > 0 ? r->lanes : DEFAULT_LANES;
+    return r->lanes > 0 ? r->lanes : hl_tape_lanes_native();
 }
 
 /* The loop over lanes, compiled, if members can share it: an explicit

@@ -572,6 +572,12 @@ static void release(void *code)
 
 /* ---- the batch object ------------------------------------------------------------ */
 
+int hl_tape_lanes_native(void)
+{
+    int isa = hl_jit_host_isa(); /* the -march level the lanes are compiled for */
+    return isa == 4 ? 8 : isa == 3 ? 4 : 2;
+}
+
 static int power_of_two(int x)
 {
     return x > 0 && (x & (x - 1)) == 0;
