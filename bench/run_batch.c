@@ -18,7 +18,31 @@
  * Arguments: [members 64] [steps 100000] [reps 3] [scheme stormer-verlet-kdk]
  * [system: all|pendulum|henon|kepler] [mode: all|single-interp|...].
  * CSV on stdout: system,scheme,mode,members,steps,cpu_s,members_per_s,
- * ns_per_member_step,first_call_ms,identical.  bench/run_batch.sh runs it. */
+ * ns_per_member_step,first_call_ms,identical.
+ *
+ * Measured 2026-11-28 (commit 15e2188, AMD EPYC with AVX-512, 2 cores
+ * shared by several jobs, load 17-21; `bench-run_batch 64 100000 3
+ * <scheme>` with a fresh cache; ns a member-step, CPU, the best of 3;
+ * every member bit for bit single-interp's in every mode):
+ *                  interp  single-jit  batch-2  batch-4  batch-8
+ *   Stormer-Verlet
+ *     pendulum      112      25.0       19.5     21.4     20.4
+ *     Henon-Heiles  106       9.5        4.1      2.5      1.55
+ *     Kepler        186      50.5       47.0     36.8     28.2
+ *   RK4
+ *     pendulum      171      55.0       49.7     50.3     49.4
+ *     Henon-Heiles  180      18.2        9.2      4.6      3.1
+ *     Kepler        282      90.5       57.0     49.2     47.0
+ *   symplectic Euler (a)
+ *     pendulum       86      21.5       21.4     19.5     19.3
+ *     Henon-Heiles   88       7.9        3.5      2.25     1.46
+ *     Kepler        141      39.0       23.3     17.5     13.9
+ * Lanes pay where the step is arithmetic (Henon-Heiles: 3.5-4x at 4
+ * lanes, 5-6x at 8); libm's functions are called lane by lane, so the
+ * pendulum (sin and cos: one of each a step even with the carried sin, H
+ * is watched) gains 10-20 % and Kepler (libm's pow for r^(-3/2)) 1.3-2.8x.
+ * The first call (compiling the lanes' loop, wall clock on the loaded
+ * machine) took 0.5-2.6 s; a cached entry loads in under a millisecond. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
