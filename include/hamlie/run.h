@@ -191,6 +191,44 @@ int hl_run_event_order(const hl_run *r);
 hl_status hl_run_fixed(hl_run *r, const double *z0, double dt, double t, long every, hl_run_fn fn,
                        void *arg, hl_run_stats *stats, hl_error *err);
 
+/* ---- many members at once: fixed-step runs in SIMD lanes -------------------
+ * The same fixed-step run from B starting points (heyoka's batch mode for
+ * the compiled fixed-step loop): member i from z0[i*2N .. i*2N + 2N-1] ends
+ * as hl_run_fixed(r, z0_i, dt, t, 1, NULL, NULL, &stats[i], &errs[i]) would
+ * take it alone — the same status, message, statistics (max |H - H0| over
+ * every step, H at the end) and final state (hl_run_state), to the last bit
+ * — with that state in z[i*2N ..] (z may be z0).  Where it pays, `lanes`
+ * members step side by side in the SIMD lanes of one compiled loop
+ * (tape.h, hl_tape_iter_batch: the explicit step fused with H, as in
+ * hl_run_fixed's own fast path): for an explicit scheme, with machine code
+ * on (hl_run_set_jit), no reference, events or progress callback, and B *
+ * n member-steps enough to repay the loop's compilation (hl_tape_compile_
+ * pays; the code is kept in r and in the disk cache).  A lane whose member
+ * is done takes the next; a member whose step or H stops being finite
+ * leaves its lane and is run again alone by hl_run_fixed, so that its
+ * failure reads as there (step, time, message), and the others go on.
+ * Otherwise (implicit schemes: Newton's iterations differ from member to
+ * member, see docs/sweep.md; without libgccjit; short runs) the members go
+ * through hl_run_fixed one after the other, with the same results.
+ * stats (B values, may be NULL): a member that cannot start
+ * (hl_run_check_start) has them zeroed.  errs (B values, may be NULL):
+ * cleared on success.  Returns HL_OK if every member succeeded, else the
+ * first failing member's status, err naming it ("member 3: blow-up: ...");
+ * the others went on either way.  dt and t as hl_run_fixed (an error there
+ * is every member's).  One thread per run, as always. */
+hl_status hl_run_fixed_batch(hl_run *r, long B, const double *z0, double dt, double t, double *z,
+                             hl_run_stats *stats, hl_status *status, hl_error *errs, hl_error *err);
+
+/* The lanes of hl_run_fixed_batch: 0 for the default (the machine's vector
+ * width, hl_tape_lanes_native: 4 with AVX2, 8 with AVX-512), 1 for one
+ * member at a time, else a power of 2 up to HL_TAPE_BATCH_MAX_LANES
+ * (HL_EINVAL otherwise).  The results do not depend on it. */
+hl_status hl_run_set_lanes(hl_run *r, int lanes, hl_error *err);
+
+/* The lanes that hl_run_fixed_batch would use for B members over (dt, t):
+ * 1 when they would run one at a time.  Compiles the loop if it would. */
+int hl_run_batch_lanes(hl_run *r, long B, double dt, double t);
+
 /* The adaptive Taylor integrator, rows at k*dt (see above). */
 hl_status hl_run_adaptive(hl_run *r, const double *z0, double tol, double dt, double t, long every,
                           hl_run_fn fn, void *arg, hl_run_stats *stats, hl_error *err);

@@ -370,6 +370,46 @@ int hl_tape_batch_compiled(const hl_tape_batch *batch);
 double *hl_tape_batch_coefs(hl_tape_batch *batch);
 void hl_tape_batch_ode(hl_tape_batch *batch);
 
+/* ---- the watched iteration of several members at once (batch) --------------
+ * hl_tape_iterate_watch for `lanes` states side by side: one loop over
+ * values that are vectors of lanes doubles (4 fill AVX2's registers),
+ * compiled by libgccjit; each lane's outputs, state and *dev are those of
+ * hl_tape_iterate_watch for that lane alone, to the last bit (the same
+ * operations in the same order, lane by lane; libm's functions called lane
+ * by lane).  The lanes step together: the loop stops before the first step
+ * at which some lane's outputs (w included) are not all finite, and every
+ * lane has then taken the steps returned; the caller finds the lane (its
+ * outputs at its state, hl_tape_eval_d) and goes on without it.  Without
+ * compiled code (compile 0, no libgccjit, a failed compilation) the lanes
+ * step one after the other through the interpreter, with the same results.
+ * The compiled code goes through the disk cache.  A batch borrows its tape
+ * (which must outlive it; one thread per batch and tape). */
+typedef struct hl_tape_iter_batch hl_tape_iter_batch;
+
+/* tape: nout == nin >= 2, as hl_tape_iterate_watch; lanes a power of 2,
+ * 1..HL_TAPE_BATCH_MAX_LANES (HL_EINVAL otherwise).  compile: 1 to compile
+ * the loop (or load it from the cache; tens of milliseconds the first
+ * time, so for long runs: hl_tape_compile_pays), 0 for the interpreter. */
+hl_status hl_tape_iter_batch_new(hl_tape_iter_batch **out, hl_tape *tape, int lanes, int compile,
+                                 hl_error *err);
+void hl_tape_iter_batch_free(hl_tape_iter_batch *batch); /* NULL is a no-op */
+int hl_tape_iter_batch_lanes(const hl_tape_iter_batch *batch);
+/* 1 if the loop runs as compiled SIMD code, 0 if through the interpreter. */
+int hl_tape_iter_batch_compiled(const hl_tape_iter_batch *batch);
+/* The lanes' inputs, owned by the batch: input i of lane l at
+ * z[i * lanes + l] (the last input, held fixed, is each lane's own).
+ * Aligned for the vectors; valid until hl_tape_iter_batch_free. */
+double *hl_tape_iter_batch_state(hl_tape_iter_batch *batch);
+/* Up to n steps of every lane; w0 and dev: lanes values each (lane l's
+ * w0 and *dev of hl_tape_iterate_watch).  Returns the steps every lane
+ * took (n, or fewer when one lane's next step is not finite). */
+long hl_tape_iter_batch_watch(hl_tape_iter_batch *batch, long n, const double *w0, double *dev);
+/* The lanes that fill this machine's vector registers, which the lanes'
+ * code is compiled for: 8 with AVX-512, 4 with AVX2, else 2 (SSE2).  The
+ * fixed-step batch's default (bench/run_batch.c: Henon-Heiles' Störmer–
+ * Verlet step 2.5 ns a member-step at 4 lanes, 1.6 at 8 on AVX-512). */
+int hl_tape_lanes_native(void);
+
 #ifdef __cplusplus
 }
 #endif

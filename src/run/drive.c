@@ -195,11 +195,12 @@ static int fixed_ref(drive *d, hl_error *err)
  * a value that is not finite the loop stops before that step and the
  * scheme's stepper takes over, so failures read as on the slow path. */
 
-/* The fused tape, compiled, if this run should use it. */
-static int fused_ready(hl_run *r, long nsteps)
+/* The fused tape, built on first use; NULL if the scheme has none
+ * (implicit) or it cannot be built. */
+hl_tape *hl_run_fused_(hl_run *r)
 {
-    if (!r->jit || r->scheme == NULL || r->fused_failed || !hl_tape_jit_available())
-        return 0;
+    if (r->scheme == NULL || r->fused_failed)
+        return NULL;
     if (r->fused == NULL) {
         int n2 = 2 * r->N;
         const hl_expr **outs = hl_xmalloc((size_t)(n2 + 1) * sizeof *outs);
@@ -211,17 +212,21 @@ static int fused_ready(hl_run *r, long nsteps)
             hl_tape_new(&r->fused, outs, n2 + 1, in, n2 + 1, NULL) != HL_OK)
             r->fused_failed = 1;
         free(outs), free(in);
-        if (r->fused_failed)
-            return 0;
     }
+    return r->fused;
+}
+
+/* The fused tape, compiled, if this run should use it. */
+static int fused_ready(hl_run *r, long nsteps)
+{
+    if (!r->jit || !hl_tape_jit_available() || hl_run_fused_(r) == NULL)
+        return 0;
     if (hl_tape_jit_active(r->fused))
         return 1;
     if (!hl_tape_compile_pays(r->fused, HL_COMPILE_LOOP, nsteps))
         return 0;
     if (hl_tape_jit(r->fused, NULL) != HL_OK) {
-        hl_tape_free(r->fused);
-        r->fused = NULL;
-        r->fused_failed = 1;
+        r->fused_failed = 1; /* the tape stays: a batch (batch.c) may borrow it */
         return 0;
     }
     return 1;

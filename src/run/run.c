@@ -91,6 +91,7 @@ void hl_run_free(hl_run *r)
         return;
     hl_scheme_stepper_free(r->stepper);
     hl_tape_free(r->obs);
+    hl_tape_iter_batch_free(r->lane_loop); /* before the tape it borrows */
     hl_tape_free(r->fused);
     hl_tape_free(r->vf);
     hl_event_free(r->ev); /* hl_run_event's */

@@ -22,6 +22,8 @@ struct hl_run {
     int jit;                    /* compile obs to machine code for long runs */
     hl_tape *fused;             /* explicit step and H: z, D -> Z, H(z) (drive.c) */
     int fused_failed;           /* no fused tape for this scheme */
+    int lanes;                  /* hl_run_set_lanes (0: the default) */
+    hl_tape_iter_batch *lane_loop; /* the fused tape over lanes (batch.c), or NULL */
     double ref_tol;
     double *z, *ref, *vals;     /* state, reference, H and observers */
     hl_progress_fn progress;    /* the caller's, or NULL (hl_run_set_progress) */
@@ -48,6 +50,11 @@ int hl_run_crossing_(hl_run *r, double t, const double *z, hl_run_stats *s);
 int hl_run_event_step_(hl_run *r, long k, double dt, hl_run_stats *s);
 
 int hl_run_compile_(hl_run *r, hl_error *err);
+
+/* The fused tape z, D -> Z, H(z) of an explicit scheme (drive.c), built on
+ * first use; NULL for an implicit scheme, a caller's stepper or the
+ * adaptive run. */
+hl_tape *hl_run_fused_(hl_run *r);
 
 /* The caller's progress callback when `done` steps (or output rows; a
  * fraction between two rows) have reached *next, then *next = done +
