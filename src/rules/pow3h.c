@@ -1,16 +1,21 @@
-/* a^(3/2): Kepler's r^3 (the tape compiler writes w^(3/2) and sqrt(w) w as
- * this op).  A power whose exponent the rule knows, so that no back end
- * calls pow().
+/* a^(3/2): Kepler's r^3 (the tape compiler writes w^(3/2), sqrt(w) w and
+ * sqrt(w)^3 as this op).  A power whose exponent the rule knows, so that no
+ * back end calls pow(): a fixed-step Kepler run costs what the loop written
+ * by hand does (bench/run-fixed-process.sh), not twice as much.
  *
- * Point value a sqrt(a): two roundings, at most about 1.25 ulp (measured
- * with mpmath over random and hard arguments by bench/pow3h_ulp.py; glibc's
- * pow is within 0.51 ulp) for a tenth of pow's time.  sqrt(a a a) is no more
- * accurate (three roundings, the first two halved by the root) and
- * overflows from a ~ 5.6e102; a correction by fma (p = a r, r = sqrt(a):
- * p + (fma(a, r, -p) - fma(r, r, -a) r / 2)) is within 0.5 ulp but turns an
- * overflowing p into NaN, and the emitters have no select.  Out of the
- * domain as pow: a < 0 gives NaN, +-0 gives +0, +inf gives +inf; only
- * -inf differs (NaN here, +inf from pow).
+ * Point value a sqrt(a), the hand loop's: two roundings, so under 2 ulp;
+ * at most 1.27 ulp seen and 0.34 ulp on average, correctly rounded three
+ * times in four (bench/pow3h_ulp.py against mpmath; glibc's pow: 0.505 ulp,
+ * 0.25 on average).  Nothing as cheap is better everywhere:
+ *   - sqrt(a a a): 1.17 ulp at most, 0.30 on average in [1, 4), but a^3
+ *     overflows from a ~ 5.6e102 and loses its digits below a ~ 1e-103;
+ *   - fma(a, r, -(fma(r, r, -a) (r/2))), r = sqrt(a) (a sqrt(a) is
+ *     a r - (r^2 - a) r/2 up to u^2): 0.50 ulp, for two fma and a product
+ *     more, but where the result overflows, the correction (u times the
+ *     result) does too from a ~ 2^720, and about half of those a then give
+ *     -inf; +inf gives NaN.  Safe only with a select the emitters lack.
+ * Out of the finite positives as pow: a < 0 gives NaN, +-0 gives +0, +inf
+ * gives +inf; only -inf differs (NaN here, +inf from pow).
  *
  * Taylor recurrence: pow.c's with c = 3/2 as constants (weights 5/2 m - k),
  * one weighted convolution a coefficient; cheaper than sqrt's series times

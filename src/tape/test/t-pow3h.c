@@ -3,9 +3,9 @@
  *     SQRT, no POWK left);
  *   point values at hard arguments (tiny, subnormal, huge, near overflow,
  *     0, -0, negative, inf, NaN): the interpreter and the libgccjit code
- *     bitwise w*sqrt(w) from libm, within 1.25 ulp of mpmath's value (the
- *     measured worst case, bench/pow3h_ulp.py; the bound from two roundings
- *     is 2 ulp), where mpmath's rounds to a finite double; the Arb
+ *     bitwise w*sqrt(w) from libm, within 1.3 ulp of mpmath's value (the
+ *     worst seen is 1.27 ulp, bench/pow3h_ulp.py; the bound from two
+ *     roundings is 2 ulp), or inf where mpmath's exceeds DBL_MAX; the Arb
  *     interpreter a ball around mpmath's value;
  *   Taylor coefficients of w(t)^(3/2) for two polynomials w(t), against
  *     SymPy's series: the double interpreter (1e-14 relative to the largest
@@ -67,7 +67,8 @@ static const struct {
     {0.3, "1.64316767251549824915678018108e-1"},
     {2.0, "2.82842712474619009760337744842"},
     {4.0, "8.0"},
-    {1.564091062758839, "1.95610900198819509226860875948"}, /* the worst: 1.24 ulp */
+    {1.564091062758839, "1.95610900198819509226860875948"},  /* 1.24 ulp */
+    {1.5839130040029725, "1.99341162494828611465697902411"}, /* the worst seen: 1.27 ulp */
     {1e-200, "9.99999999999999973150393598624e-301"},
     {5e-206, "1.11803398874989485001636966915e-308"},                  /* a subnormal result */
     {4.9406564584124654e-324, "1.09818873711362634127465406532e-485"}, /* subnormal w */
@@ -113,7 +114,7 @@ static void check_point(hl_tape *t, hl_tape *tj, double w, const char *mp)
     arb_init(exact), arb_init(in), arb_init(out);
     arb_set_str(exact, mp, 256);
     double off = ulps_off(got, exact);
-    CHECK_MSG(off <= 1.25, "w = %.17g: %.17g is %.3f ulp off mpmath's %s", w, got, off, mp);
+    CHECK_MSG(off <= 1.3, "w = %.17g: %.17g is %.3f ulp off mpmath's %s", w, got, off, mp);
     arb_set_d(in, w);
     hl_tape_eval_arb(out, in, 128, t);
     arb_t rel;
