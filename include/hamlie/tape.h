@@ -91,6 +91,7 @@ typedef enum hl_op {
     HL_OP_ATAN2, /* d a b x atan2(a, b); x=a^2+b^2  x[k] = (a*a)[k] + (b*b)[k];
                                             d[k] = (sum_{j=1..k} j (b[k-j] a[j] - a[k-j] b[j])
                                                     - sum_{j=1..k-1} (k-j) x[j] d[k-j]) / (k x[0]) */
+    HL_OP_POW3H, /* d a   a^(3/2) = a sqrt(a)  as POWK with c = 3/2 (w^(3/2), sqrt(w) w) */
     HL_OP_COUNT
 } hl_op;
 

@@ -18,7 +18,7 @@ static const hl_rule *const table[HL_OP_COUNT] = {
     [HL_OP_TAN] = &hl_rule_tan,       [HL_OP_TANH] = &hl_rule_tanh,
     [HL_OP_ATAN] = &hl_rule_atan,     [HL_OP_ASIN] = &hl_rule_asin,
     [HL_OP_ACOS] = &hl_rule_acos,     [HL_OP_ASINH] = &hl_rule_asinh,
-    [HL_OP_ATAN2] = &hl_rule_atan2,
+    [HL_OP_ATAN2] = &hl_rule_atan2,   [HL_OP_POW3H] = &hl_rule_pow3h,
 };
 
 const hl_rule *hl_rule_of(hl_op op) { return op >= 0 && op < HL_OP_COUNT ? table[op] : NULL; }

@@ -63,6 +63,10 @@ static inline hl_ev rule_keep_inverse(hl_em *E, hl_ev v)
     return inv;
 }
 
+/* a^c's recurrence at k > 0 (pow.c), shared with a^(3/2): stores d[k]
+ * from c1 = c + 1 and the kept 1/a[0] and c d[0]/a[0] */
+void rule_pow_step(hl_em *E, int k, hl_ev c1);
+
 /* asin, acos, asinh (asin.c): d' = sign a'/x, x = sqrt(1 + a2_sign a^2);
  * point computes D[0] */
 void rule_root_inverse(hl_em *E, int k, void (*point)(hl_em *), int a2_sign, int sign);
@@ -73,6 +77,7 @@ extern const hl_rule hl_rule_neg, hl_rule_add, hl_rule_sub, hl_rule_addk, hl_rul
 extern const hl_rule hl_rule_mul, hl_rule_sqr;   /* mul.c */
 extern const hl_rule hl_rule_div, hl_rule_kdiv;  /* div.c */
 extern const hl_rule hl_rule_powk;               /* pow.c */
+extern const hl_rule hl_rule_pow3h;              /* pow3h.c */
 extern const hl_rule hl_rule_sqrt;               /* sqrt.c */
 extern const hl_rule hl_rule_exp;                /* exp.c */
 extern const hl_rule hl_rule_log;                /* log.c */

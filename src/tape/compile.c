@@ -238,15 +238,10 @@ static int is_sqrt_of(comp *c, int r, int w)
 
 /* sqrt(w) w as w^(3/2) (Kepler's r^3): one recurrence instead of two, and
  * written here, in the tape, so that every back end computes the same
- * (rules/pow.c). */
+ * (rules/pow3h.c: w sqrt(w) at a point, not pow()). */
 static int three_halves(comp *c, int w)
 {
-    fmpq_t q;
-    fmpq_init(q);
-    fmpq_set_si(q, 3, 2);
-    int k = rational_leaf(c, q);
-    fmpq_clear(q);
-    return emit(c, HL_OP_POWK, w, k);
+    return emit(c, HL_OP_POW3H, w, -1);
 }
 
 /* Binary op with the K-variants when one side is constant. */
@@ -374,6 +369,11 @@ static int compile_pow(comp *c, const hl_expr *e, int *reg, fmpq_t s)
     if (x->kind == HL_NUM && fmpz_is_one(fmpq_numref(x->num))
         && fmpz_cmp_ui(fmpq_denref(x->num), 2) == 0) {
         *reg = emit(c, HL_OP_SQRT, a, -1);
+        return HL_OK;
+    }
+    if (x->kind == HL_NUM && fmpz_equal_si(fmpq_numref(x->num), 3) &&
+        fmpz_equal_si(fmpq_denref(x->num), 2)) {
+        *reg = three_halves(c, a);
         return HL_OK;
     }
     int b;
@@ -733,9 +733,9 @@ int hl_tape_nops(const hl_tape *t) { return t->ncode; }
 int hl_tape_nregs(const hl_tape *t) { return t->nregs; }
 
 static const char *const op_names[HL_OP_COUNT] = {
-    "NEG", "ADD", "SUB", "MUL", "DIV", "SQR", "ADDK", "SUBK", "KSUB", "MULK", "DIVK",
-    "KDIV", "POWK", "SQRT", "EXP", "LOG", "SINCOS", "SINHCOSH", "TAN", "TANH", "ATAN",
-    "ASIN", "ACOS", "ASINH", "ATAN2",
+    "NEG",  "ADD",  "SUB",  "MUL",  "DIV",  "SQR",   "ADDK",  "SUBK",   "KSUB",
+    "MULK", "DIVK", "KDIV", "POWK", "SQRT", "EXP",   "LOG",   "SINCOS", "SINHCOSH",
+    "TAN",  "TANH", "ATAN", "ASIN", "ACOS", "ASINH", "ATAN2", "POW3H",
 };
 
 const char *hl_op_name(hl_op op)

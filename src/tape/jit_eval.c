@@ -246,7 +246,7 @@ typedef struct carry {
 
 static int carried_op(int op)
 {
-    return op == HL_OP_POWK || (op >= HL_OP_SQRT && op <= HL_OP_ACOS);
+    return op == HL_OP_POWK || op == HL_OP_POW3H || (op >= HL_OP_SQRT && op <= HL_OP_ACOS);
 }
 
 /* The instructions whose values a loop can carry; nmap inputs fed back.

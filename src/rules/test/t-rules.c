@@ -2,9 +2,10 @@
  * on series held in arrays, checked by identities that do not come from the
  * rules themselves: exp(log a) = a, sin^2 + cos^2 = 1, tan = sin/cos,
  * atan(tan a) = a, asin(sin a) = a, acos = pi/2 - asin, sqrt(a)^2 = a,
- * a^c a^-c = 1, (a/b) b = a, (k/a) a = k, atan2(r sin t, r cos t) = t in
- * all four quadrants, the linear ops' inverses, at several points including
- * awkward ones (a0 near 0, negative, large); and by closed forms (the
+ * a^c a^-c = 1, a^(3/2) = sqrt(a) a, (a/b) b = a, (k/a) a = k,
+ * atan2(r sin t, r cos t) = t in all four quadrants, the linear ops'
+ * inverses, at several points including awkward ones (a0 near 0,
+ * negative, large); and by closed forms (the
  * Taylor coefficients of exp(c + t), log(1 + t), (1 + t)^c, atan t, ...).
  * Every operation is reached at least once.  Tolerance: 1e-13 relative to
  * the largest coefficient of the expected series up to k, since a
@@ -158,6 +159,9 @@ static void test_roots_powers(void)
         check_close("a^(1/2) = sqrt a", pts[i], opk(HL_OP_POWK, a, 0.5), r, TOL);
         check_close("a^(3/2) = sqrt(a) a", pts[i], opk(HL_OP_POWK, a, 1.5), op2(HL_OP_MUL, r, a),
                     TOL);
+        check_close("pow3h(a) = sqrt(a) a", pts[i], op1(HL_OP_POW3H, a), op2(HL_OP_MUL, r, a), TOL);
+        check_close("pow3h(a) = a^(3/2)", pts[i], op1(HL_OP_POW3H, a), opk(HL_OP_POWK, a, 1.5),
+                    TOL);
         for (size_t j = 0; j < sizeof cs / sizeof *cs; j++) {
             ser p = op2(HL_OP_MUL, opk(HL_OP_POWK, a, cs[j]), opk(HL_OP_POWK, a, -cs[j]));
             check_close("a^c a^-c", pts[i], p, one, TOL);
@@ -214,7 +218,7 @@ static void test_linear(void)
  * a recurrence. */
 static void test_closed_forms(void)
 {
-    ser t = konst(0), e, l, p, at, inv;
+    ser t = konst(0), e, l, p, p32, at, inv;
     t.c[1] = 1;
     ser ct = t, lt = t;
     ct.c[0] = 0.3;
@@ -223,12 +227,14 @@ static void test_closed_forms(void)
         e.c[k] = exp(0.3) / tgamma(k + 1.0);                     /* exp(0.3 + t) */
         l.c[k] = k == 0 ? 0 : (k % 2 ? 1.0 : -1.0) / k;          /* log(1 + t) */
         p.c[k] = k == 0 ? 1 : p.c[k - 1] * (0.75 - (k - 1)) / k; /* (1 + t)^(3/4) */
+        p32.c[k] = k == 0 ? 1 : p32.c[k - 1] * (1.5 - (k - 1)) / k; /* (1 + t)^(3/2) */
         at.c[k] = k % 2 ? (k % 4 == 1 ? 1.0 : -1.0) / k : 0;     /* atan t */
         inv.c[k] = 1;                                            /* 1/(1 - t) */
     }
     check_close("exp(0.3 + t)", 0.3, op1(HL_OP_EXP, ct), e, TOL);
     check_close("log(1 + t)", 1, op1(HL_OP_LOG, lt), l, TOL);
     check_close("(1 + t)^(3/4)", 1, opk(HL_OP_POWK, lt, 0.75), p, TOL);
+    check_close("(1 + t)^(3/2)", 1, op1(HL_OP_POW3H, lt), p32, TOL);
     check_close("atan t", 0, op1(HL_OP_ATAN, t), at, TOL);
     check_close("1/(1 - t)", 1, opk(HL_OP_KDIV, opk(HL_OP_KSUB, t, 1), 1), inv, TOL);
     ser s = op1(HL_OP_SINCOS, t), sh = op1(HL_OP_SINHCOSH, t);
@@ -255,12 +261,13 @@ static void test_points(void)
     const struct {
         hl_op op;
         double want;
-    } v[] = {
-        {HL_OP_SQRT, sqrt(0.3)},      {HL_OP_EXP, exp(0.3)},    {HL_OP_LOG, log(0.3)},
-        {HL_OP_SINCOS, sin(0.3)},     {HL_OP_TAN, tan(0.3)},    {HL_OP_ATAN, atan(0.3)},
-        {HL_OP_ASIN, asin(0.3)},      {HL_OP_ACOS, acos(0.3)},  {HL_OP_ATAN2, atan2(0.3, -0.8)},
-        {HL_OP_POWK, pow(0.3, -0.8)}, {HL_OP_KDIV, -0.8 / 0.3}, {HL_OP_DIV, 0.3 / -0.8},
-        {HL_OP_ASINH, asinh(0.3)}};
+    } v[] = {{HL_OP_SQRT, sqrt(0.3)},         {HL_OP_EXP, exp(0.3)},
+             {HL_OP_LOG, log(0.3)},           {HL_OP_SINCOS, sin(0.3)},
+             {HL_OP_TAN, tan(0.3)},           {HL_OP_ATAN, atan(0.3)},
+             {HL_OP_ASIN, asin(0.3)},         {HL_OP_ACOS, acos(0.3)},
+             {HL_OP_ATAN2, atan2(0.3, -0.8)}, {HL_OP_POWK, pow(0.3, -0.8)},
+             {HL_OP_KDIV, -0.8 / 0.3},        {HL_OP_DIV, 0.3 / -0.8},
+             {HL_OP_ASINH, asinh(0.3)},       {HL_OP_POW3H, 0.3 * sqrt(0.3)}};
     for (size_t i = 0; i < sizeof v / sizeof *v; i++) {
         double a = 0.3, b = -0.8, d, x;
         ref_point(v[i].op, &d, &x, &a, &b);

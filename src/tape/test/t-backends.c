@@ -170,21 +170,20 @@ static const backend backends[] = {
 
 /* ---- the operations --------------------------------------------------------- */
 
-/* A formula over a, b whose tape holds op (and for the fused case, POWK). */
+/* A formula over a, b whose tape holds op (and for the fused case, POW3H). */
 static const struct {
     hl_op op;
     const char *f;
 } cases[] = {
-    {HL_OP_NEG, "-sin(a)"},    {HL_OP_ADD, "a+b"},       {HL_OP_SUB, "a-b"},
-    {HL_OP_MUL, "a*b"},        {HL_OP_DIV, "a/b"},       {HL_OP_SQR, "a^2"},
-    {HL_OP_ADDK, "a+pi"},      {HL_OP_SUBK, "a-pi"},     {HL_OP_KSUB, "pi-a"},
-    {HL_OP_MULK, "a*pi"},      {HL_OP_DIVK, "a/pi"},     {HL_OP_KDIV, "pi/a"},
-    {HL_OP_POWK, "a^(3/4)"},   {HL_OP_SQRT, "sqrt(a)"},  {HL_OP_EXP, "exp(a)"},
-    {HL_OP_LOG, "log(a)"},     {HL_OP_SINCOS, "sin(a)"}, {HL_OP_SINHCOSH, "sinh(a)"},
-    {HL_OP_TAN, "tan(a)"},     {HL_OP_TANH, "tanh(a)"},  {HL_OP_ATAN, "atan(a)"},
-    {HL_OP_ASIN, "asin(a)"},   {HL_OP_ACOS, "acos(a)"},  {HL_OP_ATAN2, "atan2(a,b)"},
-    {HL_OP_ASINH, "asinh(a)"},
-    {HL_OP_POWK, "sqrt(a)*a"}, /* the fused w^(3/2) */
+    {HL_OP_NEG, "-sin(a)"},    {HL_OP_ADD, "a+b"},         {HL_OP_SUB, "a-b"},
+    {HL_OP_MUL, "a*b"},        {HL_OP_DIV, "a/b"},         {HL_OP_SQR, "a^2"},
+    {HL_OP_ADDK, "a+pi"},      {HL_OP_SUBK, "a-pi"},       {HL_OP_KSUB, "pi-a"},
+    {HL_OP_MULK, "a*pi"},      {HL_OP_DIVK, "a/pi"},       {HL_OP_KDIV, "pi/a"},
+    {HL_OP_POWK, "a^(3/4)"},   {HL_OP_SQRT, "sqrt(a)"},    {HL_OP_EXP, "exp(a)"},
+    {HL_OP_LOG, "log(a)"},     {HL_OP_SINCOS, "sin(a)"},   {HL_OP_SINHCOSH, "sinh(a)"},
+    {HL_OP_TAN, "tan(a)"},     {HL_OP_TANH, "tanh(a)"},    {HL_OP_ATAN, "atan(a)"},
+    {HL_OP_ASIN, "asin(a)"},   {HL_OP_ACOS, "acos(a)"},    {HL_OP_ATAN2, "atan2(a,b)"},
+    {HL_OP_ASINH, "asinh(a)"}, {HL_OP_POW3H, "sqrt(a)*a"}, /* the fused w^(3/2) */
 };
 
 static int has_op(const hl_tape *t, hl_op op)
