@@ -354,16 +354,16 @@ static mconv *new_conv(rec *r)
     return m;
 }
 
-/* The plan of hl_conv_plan as a range of known terms (they are consecutive
- * j, a square's middle term last) and the fresh terms. */
+/* The plan of hl_conv_plan as a range of known terms (consecutive j from
+ * jh down to jl, a square's middle term first) and the fresh terms. */
 static void conv_shape(mconv *m, const hl_conv *c)
 {
     int n = c->hi - c->lo + 1, nk, nf, fr[2];
     int *idx = hl_xmalloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
     int *lane = hl_xmalloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
     hl_conv_plan(c, idx, lane, &nk, fr, &nf);
-    m->jl = nk > 0 ? idx[0] : 1;
-    m->jh = nk > 0 ? idx[nk - 1] : 0;
+    m->jl = nk > 0 ? idx[nk - 1] : 1;
+    m->jh = nk > 0 ? idx[0] : 0;
     m->nf = nf;
     for (int i = 0; i < nf; i++)
         m->f[i].j = fr[i];
