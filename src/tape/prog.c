@@ -540,8 +540,11 @@ static hl_prog *finish(rec *r, double *reg, int ncode, int *start, int nk)
     for (int i = 0; i < r->nops; i++) {
         const rop *o = &r->ops[i];
         int code = o->code == M_CONV ? conv_code(&r->cv[o->arg]) : o->code;
-        p->op[i] =
-            (mop){NULL, code, o->arg, at(&s, o->d), at(&s, o->a), at(&s, o->b), at(&s, o->c)};
+        p->op[i] = (mop){NULL, code, o->arg, at(&s, o->d), at(&s, o->a), at(&s, o->b), {NULL}};
+        if (o->code == M_CONV)
+            p->op[i].m = &r->cv[o->arg];
+        else
+            p->op[i].c = at(&s, o->c);
     }
     p->cv = r->cv;
     p->wts = r->wts ? r->wts : hl_xmalloc(1);
@@ -552,6 +555,7 @@ static hl_prog *finish(rec *r, double *reg, int ncode, int *start, int nk)
         m->y = at(&s, m->ly);
         m->wa = m->lwa >= 0 ? at(&s, m->lwa) : NULL;
         m->wb = m->lwb >= 0 ? at(&s, m->lwb) : NULL;
+        m->second = m->partner ? &p->cv[m->partner - 1] : NULL;
         m->shape = m->npost == 0   ? 0
                    : m->npost == 1 ? m->post[0].code
                                    : m->post[0].code + P_N * m->post[1].code;
