@@ -11,7 +11,19 @@
 #   cc -O2 bench/taylor_interp.c -I /tmp/old/include /tmp/old/build/libhamlie.a \
 #     -lflint-arb -lflint -lmpfr -lgmp -lgccjit -lm -ldl -o /tmp/interp-old
 # The scalar loop of a build: a wrapper that sets HAMLIE_NO_AVX2=1.
+#
+# Steadier on a loaded machine: the builds' shared libraries in ONE process,
+# taking turns round by round (a change of load or clock hits all alike):
+#   bench/run-interp.sh --so ROUNDS BENCH LIB.so...
+# BENCH is this tree's build/bench-taylor_interp; a LIB is a build's
+# build/libhamlie.so (named by the folder above build/) or a copy of it
+# (named by its file); ROUNDS of 100 calls each, min and median printed.
 set -e
+if [ "$1" = "--so" ]; then
+    R=$2 BENCH=$3
+    shift 3
+    exec "$BENCH" "$R" 100 0 "$@"
+fi
 R=$1
 shift
 out=$(mktemp)

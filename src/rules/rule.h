@@ -26,7 +26,8 @@
  *     unless the rule asks for fma; compilers run with -ffp-contract=off);
  *   - a convolution (hl_em_conv) sums its terms in the order of
  *     hl_conv_plan (rules.c): the terms that read no coefficient k ("known"
- *     terms) in four lanes by position, lanes added as (l0 + l1) + (l2 + l3)
+ *     terms) from the highest j down, in four lanes by position (the
+ *     i-th term added into lane i mod 4), lanes added as (l0 + l1) + (l2 + l3)
  *     (empty lanes left out), then the fresh terms (those reading a
  *     coefficient k) one by one, the term of operand x before that of y;
  *   - a term is x[j] y[k-j]; a weighted term (w x[j]) y[k-j], with

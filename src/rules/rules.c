@@ -45,20 +45,18 @@ static void add_term(const hl_conv *c, int j, int *idx, int *lane, int *n, int f
     }
 }
 
+/* The known terms from the highest j down.  In every recurrence y is the
+ * result's own series (D or X) and x an operand made earlier, so y[k-1],
+ * the value made last, is read at the lowest j: added last in its lane, it
+ * waits for three additions and the fresh terms, not for a whole lane of
+ * them (Taylor-interpreter time per call, pendulum/Henon-Heiles/Kepler,
+ * against from the lowest j up: see bench/taylor_interp.c and the
+ * commit).  A square's middle term x[k/2]^2 is the highest j, so it comes
+ * first, then the pairs j < k - j. */
 void hl_conv_plan(const hl_conv *c, int *idx, int *lane, int *n, int fresh[2], int *nf)
 {
     *n = *nf = 0;
-    if (!c->sym) {
-        for (int j = c->lo; j <= c->hi; j++)
-            add_term(c, j, idx, lane, n, fresh, nf);
-    } else { /* the pairs j < k - j, then the middle term x[k/2]^2 */
-        for (int j = c->lo; j <= c->hi && 2 * j < c->k; j++)
-            add_term(c, j, idx, lane, n, fresh, nf);
-        if (c->k % 2 == 0 && c->k / 2 >= c->lo && c->k / 2 <= c->hi)
-            add_term(c, c->k / 2, idx, lane, n, fresh, nf);
-    }
-    if (*nf == 2 && fresh[0] == 0) { /* x's fresh term (j = k) before y's (j = 0) */
-        fresh[0] = c->k;
-        fresh[1] = 0;
-    }
+    int top = c->sym && c->hi > c->k / 2 ? c->k / 2 : c->hi;
+    for (int j = top; j >= c->lo; j--)
+        add_term(c, j, idx, lane, n, fresh, nf); /* x's fresh term (j = k) before y's (j = 0) */
 }

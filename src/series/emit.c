@@ -110,10 +110,25 @@ static hl_ev em_coef(hl_em *em, hl_slot s, int j)
     return as_ev(v);
 }
 
+/* Put v into *to: a temporary of the arena by a swap, not a copy (a
+ * coefficient of a rational function is large; the copy was the one cost
+ * the old recurrences did not have), after which v reads *to, so a rule
+ * may still use v; the arena keeps *to's old memory for the next value. */
+static void put(series_em *E, hl_alg *to, hl_ev v)
+{
+    series_val *x = val_of(v);
+    if (x->ref || x->is_q) {
+        hl_alg_set(to, alg(E, x), E->ctx);
+        return;
+    }
+    hl_alg_swap(to, &x->a, E->ctx);
+    x->ref = to;
+}
+
 static void em_store(hl_em *em, hl_slot s, int j, hl_ev v)
 {
     series_em *E = em_of(em);
-    hl_alg_set(&E->slot[s]->c[j], alg(E, val_of(v)), E->ctx);
+    put(E, &E->slot[s]->c[j], v);
 }
 
 static hl_ev em_add(hl_em *em, hl_ev a, hl_ev b)
@@ -261,7 +276,7 @@ static hl_ev em_conv(hl_em *em, const hl_conv *c, int *has)
 static void em_keep(hl_em *em, int slot, hl_ev v)
 {
     series_em *E = em_of(em);
-    hl_alg_set(&E->keep[slot], alg(E, val_of(v)), E->ctx);
+    put(E, &E->keep[slot], v);
 }
 
 static hl_ev em_kept(hl_em *em, int slot)

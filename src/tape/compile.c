@@ -719,7 +719,6 @@ void hl_tape_free(hl_tape *t)
     hl_prog_free(t->tprog);
     hl_prog_free(t->pprog);
     hl_arb_em_free(t->aem);
-    free(t->tsplit);
     if (t->ra)
         _arb_vec_clear(t->ra, t->nregs);
     if (t->ta)

@@ -354,16 +354,16 @@ static mconv *new_conv(rec *r)
     return m;
 }
 
-/* The plan of hl_conv_plan as a range of known terms (they are consecutive
- * j, a square's middle term last) and the fresh terms. */
+/* The plan of hl_conv_plan as a range of known terms (consecutive j from
+ * jh down to jl, a square's middle term first) and the fresh terms. */
 static void conv_shape(mconv *m, const hl_conv *c)
 {
     int n = c->hi - c->lo + 1, nk, nf, fr[2];
     int *idx = hl_xmalloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
     int *lane = hl_xmalloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
     hl_conv_plan(c, idx, lane, &nk, fr, &nf);
-    m->jl = nk > 0 ? idx[0] : 1;
-    m->jh = nk > 0 ? idx[nk - 1] : 0;
+    m->jl = nk > 0 ? idx[nk - 1] : 1;
+    m->jh = nk > 0 ? idx[0] : 0;
     m->nf = nf;
     for (int i = 0; i < nf; i++)
         m->f[i].j = fr[i];
@@ -540,8 +540,11 @@ static hl_prog *finish(rec *r, double *reg, int ncode, int *start, int nk)
     for (int i = 0; i < r->nops; i++) {
         const rop *o = &r->ops[i];
         int code = o->code == M_CONV ? conv_code(&r->cv[o->arg]) : o->code;
-        p->op[i] =
-            (mop){NULL, code, o->arg, at(&s, o->d), at(&s, o->a), at(&s, o->b), at(&s, o->c)};
+        p->op[i] = (mop){NULL, code, o->arg, at(&s, o->d), at(&s, o->a), at(&s, o->b), {NULL}};
+        if (o->code == M_CONV)
+            p->op[i].m = &r->cv[o->arg];
+        else
+            p->op[i].c = at(&s, o->c);
     }
     p->cv = r->cv;
     p->wts = r->wts ? r->wts : hl_xmalloc(1);
@@ -552,6 +555,7 @@ static hl_prog *finish(rec *r, double *reg, int ncode, int *start, int nk)
         m->y = at(&s, m->ly);
         m->wa = m->lwa >= 0 ? at(&s, m->lwa) : NULL;
         m->wb = m->lwb >= 0 ? at(&s, m->lwb) : NULL;
+        m->second = m->partner ? &p->cv[m->partner - 1] : NULL;
         m->shape = m->npost == 0   ? 0
                    : m->npost == 1 ? m->post[0].code
                                    : m->post[0].code + P_N * m->post[1].code;

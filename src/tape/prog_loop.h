@@ -35,7 +35,6 @@ static RUN_TARGET void RUN(const hl_prog *p, int k, int kend, int ode, const voi
         *labels = go;
         return;
     }
-    mconv *cv = p->cv; /* a pair's first convolution writes its partner's known sum */
     const mop *o = p->op + p->start[k];
 #define NEXT() goto *(++o)->go
     goto * o->go;
@@ -67,28 +66,28 @@ sincos_:
     sincos(*o->a, o->d, (double *)o->c);
     NEXT();
 conv_:
-    conv_post(&cv[o->arg], CAT(RUN, _plain)(&cv[o->arg]), o->d);
+    conv_post(o->m, CAT(RUN, _plain)(o->m), o->d);
     NEXT();
 conv_t:
-    conv_post(&cv[o->arg], CAT(RUN, _table)(&cv[o->arg]), o->d);
+    conv_post(o->m, CAT(RUN, _table)(o->m), o->d);
     NEXT();
 conv_w:
-    conv_run_weights(&cv[o->arg]);
-    conv_post(&cv[o->arg], CAT(RUN, _table)(&cv[o->arg]), o->d);
+    conv_run_weights(o->m);
+    conv_post(o->m, CAT(RUN, _table)(o->m), o->d);
     NEXT();
 conv_p : {
-    mconv *m = &cv[o->arg];
-    conv_post(m, add_fresh(m, KNOWN_PAIR(m, &cv[m->partner - 1])), o->d);
+    mconv *m = o->m; /* it writes its partner's known sum */
+    conv_post(m, add_fresh(m, KNOWN_PAIR(m, m->second)), o->d);
     NEXT();
 }
 conv_l:
-    conv_post(&cv[o->arg], add_fresh(&cv[o->arg], cv[o->arg].known), o->d);
+    conv_post(o->m, add_fresh(o->m, o->m->known), o->d);
     NEXT();
 conv_0:
-    *o->d = CAT(RUN, _plain)(&cv[o->arg]);
+    *o->d = CAT(RUN, _plain)(o->m);
     NEXT();
 conv_t0:
-    *o->d = CAT(RUN, _table)(&cv[o->arg]);
+    *o->d = CAT(RUN, _table)(o->m);
     NEXT();
 ode_:
     if (!ode)

@@ -35,16 +35,26 @@ typedef enum mcode {
  * values of the run.  In the order of the M_CONV codes. */
 enum { CV_PLAIN, CV_TABLE, CV_WEIGHTED };
 
+typedef struct mconv mconv;
+
 /* A micro-operation: *d = a op b (op c); M_CALL: arg is the hl_pfn;
  * M_SINCOS: *d = sin a, *c = cos a (glibc's sincos gives sin's and cos's
- * bits); M_CONV: *d = the convolution cv[arg].  go: the address of code's
- * handler in the loop that runs the program (threaded code: a step is one
- * indirect jump, no table). */
+ * bits); M_CONV: *d = the convolution m (cv[arg]).  go: the address of
+ * code's handler in the loop that runs the program (threaded code: a step
+ * is one indirect jump, no table).  m is a pointer, not found from arg,
+ * because the loop's time goes into chains of dependent loads: a
+ * convolution's data was four loads deep (op, arg, its fields, the data),
+ * now three, like the old interpreter's (5-7 % per call, all three
+ * systems of bench/taylor_interp.c). */
 typedef struct mop {
     const void *go;
     int code, arg;
     double *d;
-    const double *a, *b, *c;
+    const double *a, *b;
+    union {
+        const double *c;
+        mconv *m;
+    };
 } mop;
 
 /* A fresh term (rule.h): (w *p) *q, w its weight (1 for a plain term: 1 p is
@@ -71,7 +81,7 @@ typedef struct post {
 
 /* A convolution: the known terms j = jl..jh (none when jh < jl) summed in
  * four lanes, then the fresh terms. */
-typedef struct mconv {
+struct mconv {
     const double *x, *y, *wa, *wb;
     double *w; /* CV_TABLE, CV_WEIGHTED: w[j] for j = jl..jh */
     int kind, k, jl, jh, nf;
@@ -85,6 +95,7 @@ typedef struct mconv {
      * so summing them early changes no bit).  partner: the second's index
      * + 1 in the first, 0 otherwise; known_done in the second. */
     int partner, known_done;
+    mconv *second; /* the partner itself (cv[partner - 1]), for the run */
     double known;
     /* CV_WEIGHTED: wa, wb are values of the run, the same at every step of
      * a flow; w[j] = wa j + wb is computed again only when their bits
@@ -92,7 +103,7 @@ typedef struct mconv {
     int w_valid;
     double wa_w, wb_w;
     long lx, ly, lwa, lwb, lw; /* while recording (lw: w's offset in the table) */
-} mconv;
+};
 
 struct hl_prog {
     /* this processor's loop: the programs of k .. kend - 1; ode: go on past M_ODE */

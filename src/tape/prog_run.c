@@ -31,20 +31,20 @@
 #define T_TABLE(j) (w[j] * x[j] * y[k - (j)])
 #define T_SECOND(j) (w[j] * x[j] * z[k - (j)])
 
-/* out = the sum of the known terms j = jl..jh (-0 when there are none):
- * term i into lane i mod 4, lanes added as rule.h says. */
+/* out = the sum of the known terms j = jh down to jl (-0 when there are
+ * none): the i-th term into lane i mod 4, lanes added as rule.h says. */
 #define KNOWN_SUM(out, TERM)                                                                       \
     do {                                                                                           \
         double l0 = -0.0, l1 = -0.0, l2 = -0.0, l3 = -0.0;                                         \
-        int j = jl;                                                                                \
-        for (; j + 3 <= jh; j += 4)                                                                \
-            l0 += TERM(j), l1 += TERM(j + 1), l2 += TERM(j + 2), l3 += TERM(j + 3);                \
-        if (j <= jh)                                                                               \
+        int j = jh;                                                                                \
+        for (; j - 3 >= jl; j -= 4)                                                                \
+            l0 += TERM(j), l1 += TERM(j - 1), l2 += TERM(j - 2), l3 += TERM(j - 3);                \
+        if (j >= jl)                                                                               \
             l0 += TERM(j);                                                                         \
-        if (j + 1 <= jh)                                                                           \
-            l1 += TERM(j + 1);                                                                     \
-        if (j + 2 <= jh)                                                                           \
-            l2 += TERM(j + 2);                                                                     \
+        if (j - 1 >= jl)                                                                           \
+            l1 += TERM(j - 1);                                                                     \
+        if (j - 2 >= jl)                                                                           \
+            l2 += TERM(j - 2);                                                                     \
         out = (l0 + l1) + (l2 + l3);                                                               \
     } while (0)
 
@@ -87,16 +87,18 @@ static double known_pair(const mconv *m, mconv *second)
  * (CMakeLists.txt), so that no a * b + c of the sums is fused. */
 #define VEC __attribute__((target("avx2,fma")))
 
-/* The last 1..3 terms: lanes 0..r-1 of x (and w) at j, and y[k-j..] at the
- * top of the four from y + k - j - 3, read under a mask (what is past the
- * end is never touched); the lanes past r get -0, which adds nothing. */
+/* Terms j, j-1, j-2, j-3 in lanes 0..3: x (and w) read from x + j - 3 and
+ * reversed, y[k-j..k-j+3] as they lie.  The last 1..3 terms (j down to jl,
+ * r of them) are read under a mask (what is past them is never touched):
+ * x's from the top of the four at x + j - 3, y's from the bottom at
+ * y + k - j; the lanes past r get -0, which adds nothing. */
 static const long long lane_mask[4][4] = {
     {0, 0, 0, 0}, {-1, 0, 0, 0}, {-1, -1, 0, 0}, {-1, -1, -1, 0}};
 static const long long top_mask[4][4] = {
     {0, 0, 0, 0}, {0, 0, 0, -1}, {0, 0, -1, -1}, {0, -1, -1, -1}};
 
 #define LOAD4(p) _mm256_loadu_pd(p)
-/* (p[3], p[2], p[1], p[0]): y[k-j] for j..j+3 from p = y + k - j - 3 */
+/* (p[3], p[2], p[1], p[0]): x[j], x[j-1], x[j-2], x[j-3] from p = x + j - 3 */
 #define REVERSED(v) _mm256_permute4x64_pd(v, 0x1b)
 #define MASK(t, r) _mm256_loadu_si256((const __m256i *)t[r])
 #define RLOAD4(p, r) _mm256_maskload_pd(p, MASK(lane_mask, r))
@@ -116,12 +118,12 @@ static inline VEC double known_plain_vec(const mconv *m)
     const double *x = m->x, *y = m->y;
     const int k = m->k, jl = m->jl, jh = m->jh;
     __m256d acc = _mm256_set1_pd(-0.0);
-    int j = jl;
-    for (; j + 3 <= jh; j += 4)
-        acc += LOAD4(x + j) * REVERSED(LOAD4(y + k - j - 3));
-    int r = jh - j + 1;
+    int j = jh;
+    for (; j - 3 >= jl; j -= 4)
+        acc += REVERSED(LOAD4(x + j - 3)) * LOAD4(y + k - j);
+    int r = j - jl + 1;
     if (r > 0)
-        acc += PAST_R(RLOAD4(x + j, r) * REVERSED(RLOAD4_TOP(y + k - j - 3, r)), r);
+        acc += PAST_R(REVERSED(RLOAD4_TOP(x + j - 3, r)) * RLOAD4(y + k - j, r), r);
     return lanes_added(acc);
 }
 
@@ -130,13 +132,13 @@ static inline VEC double known_table_vec(const mconv *m)
     const double *x = m->x, *y = m->y, *w = m->w;
     const int k = m->k, jl = m->jl, jh = m->jh;
     __m256d acc = _mm256_set1_pd(-0.0);
-    int j = jl;
-    for (; j + 3 <= jh; j += 4)
-        acc += LOAD4(w + j) * LOAD4(x + j) * REVERSED(LOAD4(y + k - j - 3));
-    int r = jh - j + 1;
+    int j = jh;
+    for (; j - 3 >= jl; j -= 4)
+        acc += REVERSED(LOAD4(w + j - 3) * LOAD4(x + j - 3)) * LOAD4(y + k - j);
+    int r = j - jl + 1;
     if (r > 0) {
-        __m256d wx = RLOAD4(w + j, r) * RLOAD4(x + j, r);
-        acc += PAST_R(wx * REVERSED(RLOAD4_TOP(y + k - j - 3, r)), r);
+        __m256d wx = REVERSED(RLOAD4_TOP(w + j - 3, r) * RLOAD4_TOP(x + j - 3, r));
+        acc += PAST_R(wx * RLOAD4(y + k - j, r), r);
     }
     return lanes_added(acc);
 }
@@ -146,17 +148,17 @@ static VEC double known_pair_vec(const mconv *m, mconv *second)
     const double *x = m->x, *y = m->y, *z = second->y, *w = m->w;
     const int k = m->k, jl = m->jl, jh = m->jh;
     __m256d acc = _mm256_set1_pd(-0.0), acc2 = acc;
-    int j = jl;
-    for (; j + 3 <= jh; j += 4) {
-        __m256d wx = LOAD4(w + j) * LOAD4(x + j);
-        acc += wx * REVERSED(LOAD4(y + k - j - 3));
-        acc2 += wx * REVERSED(LOAD4(z + k - j - 3));
+    int j = jh;
+    for (; j - 3 >= jl; j -= 4) {
+        __m256d wx = REVERSED(LOAD4(w + j - 3) * LOAD4(x + j - 3));
+        acc += wx * LOAD4(y + k - j);
+        acc2 += wx * LOAD4(z + k - j);
     }
-    int r = jh - j + 1;
+    int r = j - jl + 1;
     if (r > 0) {
-        __m256d wx = RLOAD4(w + j, r) * RLOAD4(x + j, r);
-        acc += PAST_R(wx * REVERSED(RLOAD4_TOP(y + k - j - 3, r)), r);
-        acc2 += PAST_R(wx * REVERSED(RLOAD4_TOP(z + k - j - 3, r)), r);
+        __m256d wx = REVERSED(RLOAD4_TOP(w + j - 3, r) * RLOAD4_TOP(x + j - 3, r));
+        acc += PAST_R(wx * RLOAD4(y + k - j, r), r);
+        acc2 += PAST_R(wx * RLOAD4(z + k - j, r), r);
     }
     second->known = lanes_added(acc2);
     return lanes_added(acc);

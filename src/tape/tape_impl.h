@@ -47,8 +47,7 @@ struct hl_tape {
     long (*jit_iter)(double *z, long n); /* hl_tape_iterate's loop, if nout <= nin */
     long (*jit_watch)(double *z, long n, double w0, double *dev); /* hl_tape_iterate_watch's */
     void *native_jit;       /* hl_tape_native through libgccjit: the gcc_jit_result */
-    double *tsplit;         /* the ODE step's 1/(k+1) = hi + lo: tsplit[2k], tsplit[2k+1] */
-    int ts;                 /* its stride (order + 1), 0 = not laid out */
+    int ts;                 /* td's stride (order + 1), 0 = not laid out */
     size_t tdcap;
 
     arb_ptr ta;             /* Taylor Arb: nregs * tas coefficients */
