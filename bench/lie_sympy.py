@@ -5,6 +5,9 @@ For each coordinate z of the system, the terms g^k z (k = 0..order) with
 g(phi) = {phi, H}, each kept in normal form the way a SymPy user would
 (expand for polynomials, cancel for rational functions with a square root),
 then sum D^k/k! g^k z.  Prints one line per system: name, order, CPU seconds.
+With --print NAME: computes NAME's series once and prints them, as `hamlie
+lie` does; bench/run-lie.sh times that whole process (start-up and import
+included).
 """
 import sys
 import time
@@ -34,15 +37,26 @@ def bench(name, H, qs, ps, order, normal, repeat):
     print(f"{name} {order} {best:.6f}", flush=True)
 
 
-def main():
-    which = sys.argv[1:] or ["henon-heiles", "kepler"]
+def systems():
     x, y, px, py = sp.symbols("x y px py")
-    if "henon-heiles" in which:
-        H = (px**2 + py**2) / 2 + (x**2 + y**2) / 2 + x**2 * y - y**3 / 3
-        bench("henon-heiles", H, [x, y], [px, py], 12, sp.expand, 1)
-    if "kepler" in which:
-        H = (px**2 + py**2) / 2 - 1 / sp.sqrt(x**2 + y**2)
-        bench("kepler", H, [x, y], [px, py], 8, sp.cancel, 1)
+    return {
+        "henon-heiles": ((px**2 + py**2) / 2 + (x**2 + y**2) / 2 + x**2 * y - y**3 / 3,
+                         [x, y], [px, py], 12, sp.expand),
+        "kepler": ((px**2 + py**2) / 2 - 1 / sp.sqrt(x**2 + y**2), [x, y], [px, py], 8,
+                   sp.cancel),
+    }
+
+
+def main():
+    if sys.argv[1:2] == ["--print"]:
+        H, qs, ps, order, normal = systems()[sys.argv[2]]
+        for z, total in zip(qs + ps, lie_series(H, qs, ps, order, normal)):
+            print(f"exp(D g) {z} = {total} + O(D^{order + 1})")
+        return
+    which = sys.argv[1:] or ["henon-heiles", "kepler"]
+    for name, (H, qs, ps, order, normal) in systems().items():
+        if name in which:
+            bench(name, H, qs, ps, order, normal, 1)
 
 
 if __name__ == "__main__":

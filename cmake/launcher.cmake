@@ -10,13 +10,33 @@ file(GLOB CLI_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/cli/*.c)
 set(LAUNCH_SOURCES ${PROJECT_SOURCE_DIR}/src/cli/launch.c ${PROJECT_SOURCE_DIR}/src/cli/launch_gen.c)
 list(REMOVE_ITEM CLI_SOURCES ${LAUNCH_SOURCES})
 list(REMOVE_ITEM CLI_SOURCES ${PROJECT_SOURCE_DIR}/src/cli/mpi_plugin.c) # hamlie-mpi.so's (mpi.cmake)
+list(REMOVE_ITEM CLI_SOURCES ${PROJECT_SOURCE_DIR}/src/cli/arb_lazy.c) # the module's alone (below)
 
 add_library(hamlie_cli_obj OBJECT ${CLI_SOURCES})
 target_link_libraries(hamlie_cli_obj PRIVATE hamlie_static) # its include paths
 
-add_library(hamlie_cli_module MODULE $<TARGET_OBJECTS:hamlie_cli_obj>)
+# Arb is loaded on first use (src/cli/arb_lazy.c says why): the module links
+# the library's archive by its file, which brings no Arb with it, and the
+# rest of the library's dependencies by name; -z defs makes an Arb call the
+# forwarders lack a link error (not under the sanitizers: clang's runtime)
+add_library(hamlie_cli_module MODULE $<TARGET_OBJECTS:hamlie_cli_obj>
+            ${PROJECT_SOURCE_DIR}/src/cli/arb_lazy.c)
 set_target_properties(hamlie_cli_module PROPERTIES PREFIX "" OUTPUT_NAME hamlie-cli)
-target_link_libraries(hamlie_cli_module PRIVATE hamlie_static)
+target_include_directories(hamlie_cli_module PRIVATE
+                           $<TARGET_PROPERTY:hamlie_static,INTERFACE_INCLUDE_DIRECTORIES>)
+set(HAMLIE_LINK_LAZY_ARB ${HAMLIE_LINK})
+list(REMOVE_ITEM HAMLIE_LINK_LAZY_ARB ${ARB_LIB})
+target_link_libraries(hamlie_cli_module PRIVATE $<TARGET_FILE:hamlie_static> ${HAMLIE_LINK_LAZY_ARB})
+add_dependencies(hamlie_cli_module hamlie_static)
+set_property(TARGET hamlie_cli_module APPEND PROPERTY LINK_DEPENDS $<TARGET_FILE:hamlie_static>)
+if(NOT HAMLIE_SANITIZE AND NOT HAMLIE_FUZZ)
+  target_link_options(hamlie_cli_module PRIVATE -Wl,-z,defs)
+endif()
+get_filename_component(_arb_real ${ARB_LIB} REALPATH)
+get_filename_component(_arb_file ${_arb_real} NAME)
+string(REGEX REPLACE "(\\.so\\.[0-9]+).*$" "\\1" _arb_soname ${_arb_file})
+set_property(SOURCE ${PROJECT_SOURCE_DIR}/src/cli/arb_lazy.c APPEND PROPERTY COMPILE_DEFINITIONS
+             HAMLIE_ARB_SONAME="${_arb_soname}" HAMLIE_ARB_PATH="${_arb_real}")
 
 add_executable(hamlie_launch_gen ${PROJECT_SOURCE_DIR}/src/cli/launch_gen.c
                $<TARGET_OBJECTS:hamlie_cli_obj>)

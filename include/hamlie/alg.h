@@ -116,6 +116,21 @@ hl_status hl_alg_from_expr(hl_alg *r, const hl_expr *e, hl_alg_ctx *ctx, hl_erro
  * hl_alg_from_expr of the result gives back a exactly. */
 const hl_expr *hl_alg_to_expr(const hl_alg *a, const hl_alg_ctx *ctx, hl_pool *pool);
 
+/* A polynomial's text without the expression DAG, for printing large
+ * results fast (print_poly.c): a = r * rest, split as report's formatters
+ * split hl_alg_to_expr(a), with rest's text in style appended to *rest:
+ * kind NONE (a is the number r, nothing appended), PRODUCT (a product of
+ * powers of symbols, r its signed coefficient) or SUM (at least two terms:
+ * r = 1, or the common factor pulled out, hl_alg_to_expr's rule).  The
+ * bytes are those of hl_expr_print on the DAG.  Returns 0, appending
+ * nothing, when it does not apply: style not text or SymPy, a not a
+ * polynomial in the base symbols, more than max_terms terms, or a symbol
+ * SymPy would print as Symbol('...'); then print hl_alg_to_expr(a). */
+typedef struct hl_buf hl_buf;
+typedef enum hl_alg_rest { HL_ALG_REST_NONE, HL_ALG_REST_PRODUCT, HL_ALG_REST_SUM } hl_alg_rest;
+int hl_alg_poly_split_text(hl_buf *rest, fmpq_t r, hl_alg_rest *kind, const hl_alg *a,
+                           const hl_alg_ctx *ctx, hl_pool *pool, hl_style style, long max_terms);
+
 /* ---- calculus and structure ------------------------------------------- */
 
 /* Partial derivative with respect to base symbol var (chain rule through atoms). */

@@ -44,6 +44,9 @@ typedef struct printer {
     const fmpz_mpoly_ctx_struct *mc;
     hl_pool *pool;
     int nv;               /* variables of the mpoly context */
+    int nu;               /* of which in use: the base symbols and the atoms made (the
+                           * context has room for 32 atoms; most systems make a few,
+                           * and a loop over all per term was a tenth of a print) */
     int step;             /* the series symbol, or -1 */
     const hl_expr **atom; /* memo: expression of each atom */
     const hl_expr **pow;  /* memo: var_pow(v, e) at [v * POW_MEMO_MAX + e] */
@@ -124,7 +127,7 @@ static void term_key(tkey *k, printer *pr, const ulong *exp, slong i)
 {
     k->step = exp[pr->step];
     k->deg = 0;
-    for (int v = 0; v < pr->nv; v++)
+    for (int v = 0; v < pr->nu; v++)
         if (v != pr->step)
             k->deg += exp[v];
     k->i = i;
@@ -140,13 +143,14 @@ static int tkey_cmp(const void *a, const void *b)
     return (x->i > y->i) - (x->i < y->i);
 }
 
-/* The exponent vectors of the terms of p, nv each (malloc'd): read once,
- * for the order and for the monomials. */
+/* The exponents of the variables in use of the terms of p, nu each
+ * (malloc'd): read once, for the order and for the monomials. */
 static ulong *term_exps(printer *pr, const fmpz_mpoly_t p)
 {
-    ulong *exps = hl_xmalloc((size_t)(p->length * pr->nv + 1) * sizeof *exps);
+    ulong *exps = hl_xmalloc((size_t)(p->length * pr->nu + 1) * sizeof *exps);
     for (slong i = 0; i < p->length; i++)
-        fmpz_mpoly_get_term_exp_ui(exps + i * pr->nv, p, i, pr->mc);
+        for (int v = 0; v < pr->nu; v++)
+            exps[i * pr->nu + v] = fmpz_mpoly_get_term_var_exp_ui(p, i, v, pr->mc);
     return exps;
 }
 
@@ -161,7 +165,7 @@ static slong *term_order(printer *pr, const fmpz_mpoly_t p, const ulong *exps)
     }
     tkey *k = hl_xmalloc((size_t)(n + 1) * sizeof *k);
     for (slong i = 0; i < n; i++)
-        term_key(&k[i], pr, exps + i * pr->nv, i);
+        term_key(&k[i], pr, exps + i * pr->nu, i);
     qsort(k, (size_t)n, sizeof *k, tkey_cmp);
     for (slong i = 0; i < n; i++)
         perm[i] = k[i].i;
@@ -245,13 +249,14 @@ static const hl_expr *var_pow_new(printer *pr, int v, ulong e)
     return e == 1 ? x : hl_pow(pr->pool, x, hl_num_si(pr->pool, (long)e));
 }
 
-/* |c| times the monomial with exponents exp, built left to right as it is
- * read (3*D*x*y/2 is (((3*D)*x)*y)/2), the series symbol first. */
+/* |c| times the monomial with exponents exp (of the nu variables in use),
+ * built left to right as it is read (3*D*x*y/2 is (((3*D)*x)*y)/2), the
+ * series symbol first. */
 static const hl_expr *term_mag(printer *pr, const fmpq_t c, const ulong *exp)
 {
     hl_pool *pool = pr->pool;
     int constant = 1;
-    for (int v = 0; v < pr->nv; v++)
+    for (int v = 0; v < pr->nu; v++)
         constant &= exp[v] == 0;
     fmpq_t a, n;
     fmpq_init(a);
@@ -265,7 +270,7 @@ static const hl_expr *term_mag(printer *pr, const fmpq_t c, const ulong *exp)
             fmpz_set(fmpq_numref(n), fmpq_numref(a));
             m = hl_num_fmpq(pool, n);
         }
-        for (int j = -1; j < pr->nv; j++) { /* j = -1: the series symbol */
+        for (int j = -1; j < pr->nu; j++) { /* j = -1: the series symbol */
             int v = j < 0 ? pr->step : j;
             if (v < 0 || exp[v] == 0 || (j >= 0 && v == pr->step))
                 continue;
@@ -297,7 +302,7 @@ static void plain_append(printer *pr, terms *L, const fmpz_mpoly_t p, const fmpz
         fmpz_set(fmpq_numref(q), p->coeffs + i);
         fmpz_set(fmpq_denref(q), c);
         fmpq_canonicalise(q);
-        terms_push(L, term_mag(pr, q, exps + i * pr->nv), fmpq_sgn(q) < 0);
+        terms_push(L, term_mag(pr, q, exps + i * pr->nu), fmpq_sgn(q) < 0);
     }
     fmpq_clear(q);
     free(perm);
@@ -798,9 +803,10 @@ const hl_expr *hl_alg_to_expr(const hl_alg *a, const hl_alg_ctx *ctx, hl_pool *p
     pr.mc = ctx->mctx;
     pr.pool = pool;
     pr.nv = alg_nvars(ctx);
+    pr.nu = ctx->nbase + ctx->natoms;
     pr.step = ctx->step;
     pr.atom = hl_xcalloc((size_t)ctx->natoms + 1, sizeof *pr.atom);
-    pr.pow = hl_xcalloc((size_t)pr.nv * POW_MEMO_MAX + 1, sizeof *pr.pow);
+    pr.pow = hl_xcalloc((size_t)pr.nu * POW_MEMO_MAX + 1, sizeof *pr.pow);
     hl_buf_init(&pr.scratch);
     pr.seeded = 0;
     fmpz_mpoly_factor_init(pr.seeds, pr.mc);

@@ -10,6 +10,7 @@
 
 #include "base/buf.h"
 #include "hamlie/report.h"
+#include "report/format_impl.h"
 
 /* A result too large to print is not printed: a note stands in its place,
  * and the context records it so that a command can refuse its output.
@@ -32,9 +33,103 @@ static char *print_result(const hl_expr *e, hl_alg_ctx *ctx, hl_style style)
     return hl_expr_print(e, style);
 }
 
+/* ---- polynomials without the expression DAG (issue 17) --------------------------
+ * A polynomial in text or SymPy style is written from hl_alg_poly_split_text's
+ * parts: the bytes the DAG path prints (split_num, scaled, series_term and
+ * negate_leftmost below, then hl_expr_print), at a fifth of the cost.  Only
+ * results the DAG path would print within its first budget take it, so a
+ * result too large to print is still found and noted there. */
+
+int hl_format_no_direct;
+
+/* Terms a result may have for the direct path: each prints as at most
+ * 4 nodes per symbol and a few more, well within PRINT_FIRST_NODES. */
+static long direct_max_terms(const hl_alg_ctx *ctx)
+{
+    return hl_format_no_direct ? -1 : PRINT_FIRST_NODES / (4 * hl_alg_ctx_nbase(ctx) + 16);
+}
+
+/* As expr/print.c writes an integer. */
+static void put_fmpz(hl_buf *b, const fmpz_t x)
+{
+    if (!COEFF_IS_MPZ(*x)) {
+        hl_buf_printf(b, "%ld", (long)*x);
+        return;
+    }
+    char *s = fmpz_get_str(NULL, 10, x);
+    hl_buf_puts(b, s);
+    flint_free(s);
+}
+
+static void put_fmpq(hl_buf *b, const fmpq_t c)
+{
+    put_fmpz(b, fmpq_numref(c));
+    if (!fmpz_is_one(fmpq_denref(c))) {
+        hl_buf_putc(b, '/');
+        put_fmpz(b, fmpq_denref(c));
+    }
+}
+
+/* rest as a factor: a sum in parentheses. */
+static void put_rest(hl_buf *b, hl_alg_rest kind, const hl_buf *rest)
+{
+    if (kind == HL_ALG_REST_SUM)
+        hl_buf_putc(b, '(');
+    hl_buf_putn(b, rest->s, rest->len);
+    if (kind == HL_ALG_REST_SUM)
+        hl_buf_putc(b, ')');
+}
+
+/* The element r * rest, as hl_alg_to_expr writes it: "-3*x*y/2", "2*(x + y)". */
+static void put_element(hl_buf *b, const fmpq_t r, hl_alg_rest kind, const hl_buf *rest)
+{
+    if (kind == HL_ALG_REST_NONE) {
+        put_fmpq(b, r);
+        return;
+    }
+    if (kind == HL_ALG_REST_SUM && fmpq_is_one(r)) {
+        hl_buf_putn(b, rest->s, rest->len);
+        return;
+    }
+    if (fmpq_sgn(r) < 0)
+        hl_buf_putc(b, '-');
+    if (!fmpz_is_pm1(fmpq_numref(r))) {
+        fmpz_t n;
+        fmpz_init(n);
+        fmpz_abs(n, fmpq_numref(r));
+        put_fmpz(b, n);
+        fmpz_clear(n);
+        hl_buf_putc(b, '*');
+    }
+    put_rest(b, kind, rest);
+    if (!fmpz_is_one(fmpq_denref(r))) {
+        hl_buf_putc(b, '/');
+        put_fmpz(b, fmpq_denref(r));
+    }
+}
+
+static char *format_alg_direct(const hl_alg *a, hl_alg_ctx *ctx, hl_pool *pool, hl_style style)
+{
+    hl_buf rest, out;
+    fmpq_t r;
+    hl_alg_rest kind;
+    hl_buf_init(&rest);
+    fmpq_init(r);
+    char *s = NULL;
+    if (hl_alg_poly_split_text(&rest, r, &kind, a, ctx, pool, style, direct_max_terms(ctx))) {
+        hl_buf_init(&out);
+        put_element(&out, r, kind, &rest);
+        s = hl_buf_take(&out);
+    }
+    fmpq_clear(r);
+    hl_buf_clear(&rest);
+    return s;
+}
+
 char *hl_format_alg(const hl_alg *a, hl_alg_ctx *ctx, hl_pool *pool, hl_style style)
 {
-    return print_result(hl_alg_to_expr(a, ctx, pool), ctx, style);
+    char *s = format_alg_direct(a, ctx, pool, style);
+    return s ? s : print_result(hl_alg_to_expr(a, ctx, pool), ctx, style);
 }
 
 /* Split e = r * rest, taking r from the numbers on the left spine of the
@@ -240,9 +335,138 @@ static const hl_expr *negate_leftmost(const hl_expr *t, hl_pool *pool)
     return hl_neg(pool, t);
 }
 
+/* A negated number as expr/print.c writes NEG(NUM a): "-(3)" in text (else
+ * it would read as the number -3), "-3" and "-(3/2)" in SymPy. */
+static void put_neg_number(hl_buf *b, const fmpq_t a, hl_style style)
+{
+    int paren = style == HL_STYLE_TEXT || !fmpz_is_one(fmpq_denref(a));
+    hl_buf_puts(b, paren ? "-(" : "-");
+    put_fmpq(b, a);
+    if (paren)
+        hl_buf_putc(b, ')');
+}
+
+/* The series term r D^k rest as series_term builds it and the sum prints it;
+ * first: the series' first term (a minus then on its leftmost factor, as
+ * negate_leftmost puts it). */
+static void put_series_term(hl_buf *b, const fmpq_t r, int k, const char *Dk, hl_alg_rest kind,
+                            const hl_buf *rest, int first, hl_style style)
+{
+    int neg = fmpq_sgn(r) < 0;
+    fmpq_t a;
+    fmpq_init(a);
+    fmpq_abs(a, r);
+    if (!first)
+        hl_buf_puts(b, neg ? " - " : " + ");
+    int lead_minus = first && neg;
+    if (k == 0 && kind == HL_ALG_REST_NONE) { /* one number */
+        if (lead_minus)
+            put_neg_number(b, a, style);
+        else
+            put_fmpq(b, a);
+    } else if (k == 0 && kind == HL_ALG_REST_SUM && fmpq_is_one(a)) { /* the sum itself */
+        if (first && !neg)
+            hl_buf_putn(b, rest->s, rest->len);
+        else {
+            hl_buf_puts(b, lead_minus ? "-" : "");
+            put_rest(b, kind, rest);
+        }
+    } else {
+        fmpq_t n;
+        fmpq_init(n);
+        fmpz_set(fmpq_numref(n), fmpq_numref(a));
+        if (!fmpz_is_one(fmpq_numref(a))) {
+            if (lead_minus)
+                put_neg_number(b, n, style);
+            else
+                put_fmpz(b, fmpq_numref(a));
+            hl_buf_putc(b, '*');
+        } else if (lead_minus)
+            hl_buf_putc(b, '-');
+        fmpq_clear(n);
+        if (k > 0) {
+            hl_buf_puts(b, Dk);
+            if (!fmpz_is_one(fmpq_denref(a))) {
+                hl_buf_putc(b, '/');
+                put_fmpz(b, fmpq_denref(a));
+            }
+            if (kind != HL_ALG_REST_NONE) {
+                hl_buf_putc(b, '*');
+                put_rest(b, kind, rest);
+            }
+        } else {
+            put_rest(b, kind, rest);
+            if (!fmpz_is_one(fmpq_denref(a))) {
+                hl_buf_putc(b, '/');
+                put_fmpz(b, fmpq_denref(a));
+            }
+        }
+    }
+    fmpq_clear(a);
+}
+
+/* D^k as the style writes it. */
+static void put_power(hl_buf *b, const char *D, int k, hl_style style)
+{
+    b->len = 0;
+    hl_buf_puts(b, D);
+    if (k > 1)
+        hl_buf_printf(b, "%s%d", style == HL_STYLE_SYMPY ? "**" : "^", k);
+}
+
+/* The series without the DAG, or NULL when a term is not for the direct path. */
+static char *format_series_direct(const hl_alg *terms, int order, const char *var, int factorial,
+                                  hl_alg_ctx *ctx, hl_pool *pool, hl_style style)
+{
+    long total = 0, max_terms = direct_max_terms(ctx);
+    for (int k = 0; k <= order; k++)
+        total += terms[k].num->length;
+    if (total > max_terms || (style != HL_STYLE_TEXT && style != HL_STYLE_SYMPY))
+        return NULL;
+    char *D = hl_expr_print(hl_sym(pool, var), style);
+    hl_buf out, rest, Dk;
+    hl_buf_init(&out);
+    hl_buf_init(&rest);
+    hl_buf_init(&Dk);
+    fmpq_t r, kf;
+    fmpq_init(r);
+    fmpq_init(kf);
+    fmpq_one(kf);
+    int first = 1, ok = 1;
+    for (int k = 0; k <= order && ok; k++) {
+        if (factorial && k > 0)
+            fmpz_mul_ui(fmpq_denref(kf), fmpq_denref(kf), (ulong)k); /* kf = 1/k! */
+        if (hl_alg_is_zero(&terms[k], ctx))
+            continue;
+        hl_alg_rest kind;
+        rest.len = 0;
+        if (!(ok = hl_alg_poly_split_text(&rest, r, &kind, &terms[k], ctx, pool, style, max_terms)))
+            break;
+        fmpq_mul(r, r, kf);
+        put_power(&Dk, D, k, style);
+        put_series_term(&out, r, k, Dk.s, kind, &rest, first, style);
+        first = 0;
+    }
+    if (ok && first)
+        hl_buf_putc(&out, '0');
+    fmpq_clear(r);
+    fmpq_clear(kf);
+    hl_buf_clear(&rest);
+    hl_buf_clear(&Dk);
+    free(D);
+    if (!ok) {
+        hl_buf_clear(&out);
+        return NULL;
+    }
+    return hl_buf_take(&out);
+}
+
 char *hl_format_series(const hl_alg *terms, int order, const char *var, int factorial,
                        hl_alg_ctx *ctx, hl_pool *pool, hl_style style)
 {
+    char *direct = format_series_direct(terms, order, var, factorial, ctx, pool, style);
+    if (direct != NULL)
+        return direct;
     const hl_expr *sum = NULL, *v = hl_sym(pool, var);
     fmpq_t r, kf;
     fmpq_init(r);
