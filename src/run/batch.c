@@ -69,6 +69,7 @@ static hl_tape_iter_batch *lane_loop(hl_run *r, long B, long n)
 typedef struct batch {
     hl_run *r;
     hl_tape_iter_batch *loop;
+    hl_tape *fused;  /* the tape the loop iterates */
     int L, n2;       /* lanes; 2N */
     long B, n, next; /* members, steps, the next member to start */
     double dt, t;
@@ -202,7 +203,7 @@ static void finish_lane(batch *b, int l)
  * finite give their members to hl_run_fixed.  Returns how many. */
 static int drop_failing(batch *b)
 {
-    hl_tape *t = hl_run_fused_(b->r);
+    hl_tape *t = b->fused;
     const double *zs = hl_tape_iter_batch_state(b->loop);
     double *in = hl_xmalloc((size_t)(b->n2 + 1) * 2 * sizeof *in), *out = in + b->n2 + 1;
     int dropped = 0;
@@ -313,6 +314,7 @@ hl_status hl_run_fixed_batch(hl_run *r, long B, const double *z0, double dt, dou
     b.loop = lane_loop(r, B, b.n);
     if (b.loop != NULL) {
         b.L = hl_tape_iter_batch_lanes(b.loop);
+        b.fused = r->fused; /* kept while r lives, even if its own compilation fails */
         run_lanes(&b);
     } else
         for (long i = 0; i < B; i++)

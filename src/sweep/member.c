@@ -22,9 +22,9 @@ typedef struct paramset_ctx {
     hl_status status; /* of the building: every member of the paramset fails with it */
     char reason[HL_SWEEP_REASON];
     hl_system *sys;
-    hl_scheme **sch; /* nschemes (NULL for "lie") */
-    hl_run **run;    /* nschemes */
-    hl_chaos *chaos; /* when spec.chaos */
+    hl_scheme **sch;      /* nschemes (NULL for "lie") */
+    hl_run **run;         /* nschemes */
+    hl_chaos *chaos;      /* when spec.chaos */
     hl_run_lanes **lanes; /* nschemes: a lie scheme's lanes, when they pay */
     char *lanes_tried;    /* nschemes: asked once */
 } paramset_ctx;
