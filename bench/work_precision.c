@@ -16,6 +16,9 @@
  * Arguments, key=value, any order:
  *   reps=3  T=1e4,1e5  tols=1e-9,...,1e-16  sys=-1 (or 0..3)  digits=20,30
  *   ref=0 (digits of the Arb reference; 0: none)  methods=interp,native,rk8pd,arb
+ *   order=0 (the Taylor order of hamlie in double; 0: its rule's.  With
+ *   another, the step of hl_flow_rule_at: what a step costs against the
+ *   order, for the cost model of src/tape/cost.c)
  * The vector fields come from the text of H by hl_tape_hamiltonian (the
  * path a user takes).  GSL is loaded with dlopen (libgsl.so): if it is
  * absent, rk8pd is skipped with a note on stderr. */
@@ -26,6 +29,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "flow/flow_impl.h" /* hl_flow_new_order */
 #include "hamlie/expr.h"
 #include "hamlie/flow.h"
 
@@ -151,6 +155,8 @@ static void row_double(const char *method, const system_t *S, double T, double t
 
 /* Best of reps runs to T; z: the final state.  Returns the time in ms, or
  * NAN (message on stderr) if the run fails. */
+static int forced_order; /* order=P */
+
 static double flow_best(hl_tape *tape, const system_t *S, double T, double tol, int reps, double *z,
                         long *steps, int *order)
 {
@@ -158,7 +164,7 @@ static double flow_best(hl_tape *tape, const system_t *S, double T, double tol, 
     for (int r = 0; r < reps; r++) {
         hl_flow *fl = NULL;
         hl_error err;
-        if (hl_flow_new(&fl, tape, tol, tol, &err) != HL_OK) {
+        if (hl_flow_new_order(&fl, tape, tol, tol, forced_order, &err) != HL_OK) {
             fprintf(stderr, "work_precision: %s\n", err.msg);
             return NAN;
         }
@@ -196,8 +202,11 @@ static void run_hamlie(hl_pool *P, const system_t *S, double T, double tol, int 
         hl_tape *tape = tape_from_H(P, S);
         hl_flow *fl = NULL;
         hl_error err;
-        if (hl_flow_new(&fl, tape, tol, tol, &err) != HL_OK)
+        if (hl_flow_new_order(&fl, tape, tol, tol, forced_order, &err) != HL_OK) {
+            fprintf(stderr, "work_precision: %s\n", err.msg);
+            hl_tape_free(tape);
             return;
+        }
         order = hl_flow_order(fl);
         hl_flow_free(fl);
         double c0 = now();
@@ -346,6 +355,8 @@ static void parse_args(opts *o, int argc, char **argv)
             o->sys = atoi(v);
         else if (!strncmp(a, "ref=", 4))
             o->ref = atof(v);
+        else if (!strncmp(a, "order=", 6))
+            forced_order = atoi(v);
         else if (!strncmp(a, "methods=", 8))
             snprintf(o->methods, sizeof o->methods, "%s", v);
         else {

@@ -15,6 +15,10 @@
  * so that a step's last two terms are under tol s e^-2.7 and tol s e^-0.7,
  * and its truncation error about a hundredth of tol s: tol bounds a step's
  * error, not a run's (docs/tolerance.md says what a run makes of it).
+ * In double at tol 1e-9 .. 1e-13 the order is raised where the tape's cost
+ * model (hl_tape_taylor_step_cost) says a step of higher order is cheaper
+ * per unit time, with a step whose tail past the order is a tenth of the
+ * one above (src/flow/rule.c); the Arb integrator keeps the rule above.
  * The state is added to the step's increment last, its rounding carried
  * to the next step (compensated summation, reset at each evolve).
  *

@@ -224,6 +224,12 @@ int hl_tape_compile_kept(const hl_tape *tape, hl_compile_kind kind, long uses);
  * kept in the disk cache, or worth compiling (about a second).  0 without
  * libgccjit (the lanes then run one by one: no gain). */
 int hl_tape_batch_pays(const hl_tape *tape, int order, int lanes, long member_steps);
+/* What a step of the adaptive Taylor integrator (flow.h) on this tape
+ * costs at order p, compiled, by the same cost model: c[0] + c[1] p +
+ * c[2] p^2 ns (the products' convolutions grow as p^2, linear instructions
+ * and the driver's sums over the coefficients as p, the step rule not).
+ * The flow chooses its order by it; it counts instructions, never clocks. */
+void hl_tape_taylor_step_cost(const hl_tape *tape, double c[3]);
 /* ---- the disk cache of compiled code (`hamlie cache`) ----
  * Compiled code is kept in $HAMLIE_CACHE_DIR, else $XDG_CACHE_HOME/hamlie,
  * else ~/.cache/hamlie (HAMLIE_CACHE=off: not at all).  hamlie's files

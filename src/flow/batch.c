@@ -39,7 +39,8 @@ struct hl_flow_batch {
     hl_tape *f;
     hl_tape_batch *tb;
     int n, p, L;
-    double atol, rtol, ln_atol, ln_rtol, ln_tol;
+    double atol, rtol, ln_atol, ln_rtol;
+    hl_flow_rule rule; /* hl_flow_new's order and step ratio */
     lane *lanes;
     /* by component i and lane l at i * L + l, so that the lanes' sums run
      * side by side: the states, their carried rounding (flow.c's zlo),
@@ -76,7 +77,7 @@ hl_status hl_flow_batch_new(hl_flow_batch **out, hl_tape *f, double atol, double
     b->rtol = rtol;
     b->ln_atol = log(atol);
     b->ln_rtol = log(rtol);
-    b->ln_tol = log(fmax(fmin(atol, rtol), HL_FLOW_MIN_RTOL));
+    hl_flow_rule_for(&b->rule, log(fmax(fmin(atol, rtol), HL_FLOW_MIN_RTOL)), f);
     b->lanes = hl_xcalloc((size_t)lanes, sizeof *b->lanes);
     for (int l = 0; l < lanes; l++)
         b->lanes[l].member = -1;
@@ -252,7 +253,7 @@ static int step_size(double *h, hl_flow_batch *b, int l, double t, hl_error *err
     int relative = b->rtol * n0 > b->atol;
     b->eps = relative ? b->rtol * n0 : b->atol;
     double ln_eps = relative ? b->ln_rtol + log(n0) : b->ln_atol;
-    *h = hl_flow_step_for(&b->check, b->eps, ln_eps, b->ln_tol, win, p);
+    *h = hl_flow_step_for(&b->check, b->eps, ln_eps, &b->rule, win);
     if (isnan(*h))
         return hl_error_set(
             err, HL_EDOM, NULL, -1, 0,

@@ -16,7 +16,7 @@ struct hl_flow {
     int n, p;
     double atol, rtol;
     double ln_atol, ln_rtol;
-    double ln_tol; /* the tolerance the order is from */
+    hl_flow_rule rule; /* the order and the step ratio */
     double *coef; /* n * (p+1) Taylor coefficients of the current step */
     double *zt;   /* n: state at an output time */
     double *dz, *fz; /* n each: P'(h) and f(P(h)), to check a step */
@@ -60,8 +60,8 @@ hl_status hl_flow_new(hl_flow **out, hl_tape *f, double atol, double rtol, hl_er
     fl->ln_rtol = log(rtol);
     /* an atol far below rtol only says that the relative error counts
      * near 0; an order from it would not be reached in double */
-    fl->ln_tol = log(fmax(fmin(atol, rtol), HL_FLOW_MIN_RTOL));
-    fl->p = hl_flow_order_for(fl->ln_tol);
+    hl_flow_rule_for(&fl->rule, log(fmax(fmin(atol, rtol), HL_FLOW_MIN_RTOL)), f);
+    fl->p = fl->rule.p;
     fl->coef = hl_xcalloc((size_t)n * (fl->p + 1), sizeof *fl->coef);
     fl->zt = hl_xcalloc((size_t)n, sizeof *fl->zt);
     fl->dz = hl_xcalloc((size_t)n, sizeof *fl->dz);
@@ -70,6 +70,26 @@ hl_status hl_flow_new(hl_flow **out, hl_tape *f, double atol, double rtol, hl_er
     fl->lo_next = hl_xcalloc((size_t)n, sizeof *fl->lo_next);
     fl->native_end = NAN;
     *out = fl;
+    return HL_OK;
+}
+
+hl_status hl_flow_new_order(hl_flow **out, hl_tape *f, double atol, double rtol, int order,
+                            hl_error *err)
+{
+    hl_status st = hl_flow_new(out, f, atol, rtol, err);
+    if (st != HL_OK || order == 0 || order == (*out)->p)
+        return st;
+    hl_flow *fl = *out;
+    if (order < 2 || order > HL_FLOW_MAX_ORDER) {
+        hl_flow_free(fl);
+        *out = NULL;
+        return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "the order must be 2 to %d (got %d)",
+                            HL_FLOW_MAX_ORDER, order);
+    }
+    hl_flow_rule_at(&fl->rule, fl->rule.ln_tol, order);
+    fl->p = order;
+    free(fl->coef);
+    fl->coef = hl_xcalloc((size_t)fl->n * (order + 1), sizeof *fl->coef);
     return HL_OK;
 }
 
@@ -223,7 +243,7 @@ static int step_size(double *h, hl_flow *fl, const double *z, double t, hl_error
     int relative = fl->rtol * n0 > fl->atol;
     fl->eps = relative ? fl->rtol * n0 : fl->atol;
     double ln_eps = relative ? fl->ln_rtol + log(n0) : fl->ln_atol;
-    *h = hl_flow_step_for(&fl->check, fl->eps, ln_eps, fl->ln_tol, win, p);
+    *h = hl_flow_step_for(&fl->check, fl->eps, ln_eps, &fl->rule, win);
     if (isnan(*h))
         return hl_error_set(err, HL_EDOM, NULL, -1, 0,
                             "the solution is not finite (Taylor coefficients overflow) at t = %.17g", t);

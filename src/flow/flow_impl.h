@@ -31,6 +31,8 @@
 #include <math.h>
 
 #include "hamlie/error.h"
+#include "hamlie/flow.h"
+#include "hamlie/tape.h"
 
 #define HL_FLOW_MAX_ORDER 1000
 
@@ -87,17 +89,60 @@ static inline double hl_flow_ln_safety(int p)
     return -2 - 0.7 / (p - 1);
 }
 
+/* The order and the step of a flow: h = rho e^ln_ratio, rho the radius
+ * of convergence read from the orders p-1 and p (hl_flow_step_for). */
+typedef struct hl_flow_rule {
+    int p;
+    double ln_tol;   /* the tolerance (its log) */
+    double ln_ratio; /* ln(h / rho) < 0 */
+} hl_flow_rule;
+
+/* Jorba & Zou's rule: p = hl_flow_order_for, ln_ratio = hl_flow_ln_safety
+ * (heyoka's order and steps; the Arb integrator's rule). */
+void hl_flow_rule_jz(hl_flow_rule *rule, double ln_tol);
+
+/* hl_flow_rule_for raises the order while the step it allows stays under
+ * e^-1.5 of the radius: the series still falls by e^1.5 an order (as it
+ * falls by e^2 at Jorba & Zou's), so the window's slack (e^3.5 an order)
+ * still tells a vanishing order from a falling one, and the tail past the
+ * order stays a few times its first term. */
+#define HL_FLOW_MAX_LN_RATIO (-1.5)
+
+/* The rule at order p whose step leaves the tail past p a tenth of Jorba
+ * & Zou's at their order (at their order their rule).  A tenth, not the
+ * same: at the same tail the errors of a run at a raised order were
+ * smaller than heyoka's on average (0.45 geometric mean over the four
+ * systems of docs/work-precision.md, tol 1e-9 .. 1e-13, t = 1e4) but
+ * larger at 3 points of 20 (Henon-Heiles at 1e-13: 6.6e-12 against
+ * 4.3e-12), for the orbit's errors scatter by factors of 2 to 5 from one
+ * order to the next.  A tenth costs ln(10)/(p+1), about 9 %, of the step. */
+#define HL_FLOW_RAISED_MARGIN 2.302585092994046 /* ln 10 */
+void hl_flow_rule_at(hl_flow_rule *rule, double ln_tol, int p);
+
+/* hl_flow_new at a given order (0: the rule's) with hl_flow_rule_at's
+ * step: for the benches that measure the cost of a step against the order
+ * (bench/work_precision.c order=P) and for tests.  HL_EINVAL outside
+ * 2 .. HL_FLOW_MAX_ORDER. */
+hl_status hl_flow_new_order(hl_flow **out, hl_tape *f, double atol, double rtol, int order,
+                            hl_error *err);
+
+/* The double integrator's rule for the field f: the order that costs
+ * least per unit time by the tape's cost model (hl_tape_taylor_step_cost),
+ * with the step at that order whose tail is Jorba & Zou's (rule.c). */
+void hl_flow_rule_for(hl_flow_rule *rule, double ln_tol, const hl_tape *f);
+
 /* The step from win[k - lo] = N_k, k = lo..p (lo = hl_flow_window_lo), for
- * the tolerance eps of this step (ln_eps = ln(eps)) and the tolerance
- * ln_tol the order p was chosen for (eps = tol max(1, |z|) when atol = rtol
+ * the tolerance eps of this step (ln_eps = ln(eps)) and the rule's order p,
+ * tolerance ln_tol and step ratio (eps = tol max(1, |z|) when atol = rtol
  * = tol).  eps may underflow where ln_eps does not: then the test below
  * fails and the log domain decides.  Returns > 0; +inf when every N_k of
  * the window is 0; NaN when one is not finite.  *check = 1 if the step is
  * to be checked (hl_flow_shrink), else 0. */
-static inline double hl_flow_step_for(int *check, double eps, double ln_eps, double ln_tol,
-                                      const double *win, int p)
+static inline double hl_flow_step_for(int *check, double eps, double ln_eps,
+                                      const hl_flow_rule *rule, const double *win)
 {
-    const int lo = hl_flow_window_lo(p);
+    const int p = rule->p, lo = hl_flow_window_lo(p);
+    const double ln_tol = rule->ln_tol;
     double sum = 0;
     for (int k = lo; k <= p; k++)
         sum += win[k - lo]; /* NaN or inf if a norm is */
@@ -111,9 +156,11 @@ static inline double hl_flow_step_for(int *check, double eps, double ln_eps, dou
      * rho times the safety factor; in the log domain, so one exp gives h */
     double lh = INFINITY;
     for (int k = p - 1; k <= p; k++)
-        if (win[k - lo] > 0)
-            lh = fmin(lh, (ln_eps - ln_tol - log(win[k - lo])) / k);
-    lh += hl_flow_ln_safety(p);
+        if (win[k - lo] > 0) { /* not fmin: a call through the PLT, 6 % of the driver */
+            double lk = (ln_eps - ln_tol - log(win[k - lo])) / k;
+            lh = lk < lh ? lk : lh; /* no NaN here: the sum above is finite */
+        }
+    lh += rule->ln_ratio;
     double h = exp(lh);
     /* the orders below: N_k h^k <= eps e^(3.5 (p-1-k)).  First all at once,
      * without logs or branches (most steps end here)... */

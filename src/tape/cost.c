@@ -240,3 +240,71 @@ int hl_tape_batch_pays(const hl_tape *t, int order, int lanes, long member_steps
         member_steps < breakeven && hit_repaid(saved, member_steps) && batch_kept(t, order, lanes);
     return pays_with_cache(breakeven, member_steps, kept);
 }
+
+/* ---- the cost of a Taylor step against its order ----------------------
+ * The adaptive integrator (flow.h) chooses its order by what a step costs,
+ * c0 + c1 p + c2 p^2 (hl_tape_taylor_step_cost), against how far it goes.
+ * The figures are a least-squares fit of 93 runs of the four systems of
+ * bench/work_precision.c (order=P from 12 to 40, tol 1e-9 .. 1e-16,
+ * t = 1e4 and 1e5, native; ns a step: oscillator 150 at p = 19 .. 260 at 32,
+ * Kepler 530 at 19 .. 1970 at 40), median misfit 4 %, on a loaded
+ * 2-core machine: only their ratios matter to the choice.  The linear
+ * instructions' share could not be told from the state's (the four tapes
+ * have 1 to 6); it is put at a tenth of it. */
+
+/* Per product (a convolution) and p^2: the sum over orders 0..p of k
+ * multiply-adds */
+#define TAYLOR_NS_PER_PRODUCT_P2 0.18
+/* Per linear instruction (a sum, a constant factor) and order */
+#define TAYLOR_NS_PER_LINEAR_P 0.4
+/* Per state component and order: the driver's Horner sum of the step,
+ * the coefficient norms, the copies of the coefficients */
+#define TAYLOR_NS_PER_STATE_P 4.3
+/* Per step: the step rule (logs and exps), the call of the recursion, the
+ * loop's tests and the time's two-sum */
+#define TAYLOR_NS_PER_STEP 40.0
+
+/* The products an instruction's recursion costs (in convolutions). */
+static double products_of(int op)
+{
+    switch (op) {
+    case HL_OP_MUL:
+    case HL_OP_DIV:
+    case HL_OP_KDIV:
+    case HL_OP_EXP:
+    case HL_OP_LOG:
+        return 1;
+    case HL_OP_SQR:
+    case HL_OP_SQRT:
+        return 0.5; /* half the terms by symmetry */
+    case HL_OP_POWK:
+    case HL_OP_POW3H:
+        return 1.5; /* a weighted convolution: two products a term */
+    case HL_OP_SINCOS:
+    case HL_OP_SINHCOSH:
+    case HL_OP_TAN:
+    case HL_OP_TANH:
+    case HL_OP_ATAN:
+        return 2;
+    case HL_OP_ASIN:
+    case HL_OP_ACOS:
+    case HL_OP_ASINH:
+    case HL_OP_ATAN2:
+        return 2.5;
+    default:
+        return 0; /* linear */
+    }
+}
+
+void hl_tape_taylor_step_cost(const hl_tape *t, double c[3])
+{
+    double products = 0, linear = 0;
+    for (int i = 0; i < t->ncode; i++) {
+        double w = products_of(t->code[i].op);
+        products += w;
+        linear += w == 0;
+    }
+    c[0] = TAYLOR_NS_PER_STEP;
+    c[1] = TAYLOR_NS_PER_LINEAR_P * linear + TAYLOR_NS_PER_STATE_P * t->nin;
+    c[2] = TAYLOR_NS_PER_PRODUCT_P2 * products;
+}

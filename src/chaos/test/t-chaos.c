@@ -232,7 +232,10 @@ static void test_chaotic(void)
     CHECK_MSG(close_rel(2 * r14.megno_mean / T, r14.mlce, 0.1), "2<Y>/t %g, mlce %g",
               2 * r14.megno_mean / T, r14.mlce);
     CHECK_MSG(r14.mlce > 0.05, "mlce %g", r14.mlce);
-    CHECK_MSG(close_rel(r12.mlce, r14.mlce, 0.05), "mlce %g (1e-12), %g (1e-14)", r12.mlce,
+    /* as close as the finite differences' below: the two orbits part (see
+     * below), the Taylor orders of the two tolerances are chosen apart
+     * (flow/rule.c), and 0.130 against 0.119 was seen */
+    CHECK_MSG(close_rel(r12.mlce, r14.mlce, 0.15), "mlce %g (1e-12), %g (1e-14)", r12.mlce,
               r14.mlce);
     /* over 1e4 the two follow different orbits of the chaotic sea (a 1e-14
      * difference grows like e^(0.12 t)): the finite-time exponents agree
