@@ -113,9 +113,9 @@ static double first_step(hl_tape *f, int p, double atol, double rtol, const doub
     free(c);
     int check, relative = rtol * n0 > atol;
     double eps = relative ? rtol * n0 : atol;
-    double h = ok ? hl_flow_step_for(&check, eps, log(eps),
-                                     log(fmax(fmin(atol, rtol), HL_FLOW_MIN_RTOL)), win, p)
-                  : 0;
+    hl_flow_rule rule;
+    hl_flow_rule_for(&rule, log(fmax(fmin(atol, rtol), HL_FLOW_MIN_RTOL)), f);
+    double h = ok ? hl_flow_step_for(&check, eps, log(eps), &rule, win) : 0;
     return h > 0 ? h : 0; /* NaN: 0 */
 }
 
