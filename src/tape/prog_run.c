@@ -48,8 +48,9 @@
         out = (l0 + l1) + (l2 + l3);                                                               \
     } while (0)
 
-static inline double known_plain(const mconv *m)
+static inline double known_plain(const mop *o)
 {
+    const mconv *m = o->m;
     const double *x = m->x, *y = m->y;
     const int k = m->k, jl = m->jl, jh = m->jh;
     double s;
@@ -57,8 +58,9 @@ static inline double known_plain(const mconv *m)
     return s;
 }
 
-static inline double known_table(const mconv *m)
+static inline double known_table(const mop *o)
 {
+    const mconv *m = o->m;
     const double *x = m->x, *y = m->y, *w = m->w;
     const int k = m->k, jl = m->jl, jh = m->jh;
     double s;
@@ -67,8 +69,10 @@ static inline double known_table(const mconv *m)
 }
 
 /* Both known sums of a pair (mconv); the second's left in its known. */
-static double known_pair(const mconv *m, mconv *second)
+static double known_pair(const mop *o)
 {
+    const mconv *m = o->m;
+    mconv *second = m->second;
     const double *x = m->x, *y = m->y, *z = second->y, *w = m->w;
     const int k = m->k, jl = m->jl, jh = m->jh;
     double s;
@@ -113,54 +117,54 @@ static inline VEC double lanes_added(__m256d acc)
     return _mm256_cvtsd_f64(pairs) + _mm_cvtsd_f64(_mm256_extractf128_pd(pairs, 1));
 }
 
-static inline VEC double known_plain_vec(const mconv *m)
+static inline VEC double known_plain_vec(const mop *o)
 {
-    const double *x = m->x, *y = m->y;
-    const int k = m->k, jl = m->jl, jh = m->jh;
+    const double *x = o->a, *y = o->b;
+    const int n = o->arg;
     __m256d acc = _mm256_set1_pd(-0.0);
-    int j = jh;
-    for (; j - 3 >= jl; j -= 4)
-        acc += REVERSED(LOAD4(x + j - 3)) * LOAD4(y + k - j);
-    int r = j - jl + 1;
+    int i = 0;
+    for (; i + 4 <= n; i += 4, x -= 4, y += 4)
+        acc += REVERSED(LOAD4(x)) * LOAD4(y);
+    int r = n - i;
     if (r > 0)
-        acc += PAST_R(REVERSED(RLOAD4_TOP(x + j - 3, r)) * RLOAD4(y + k - j, r), r);
+        acc += PAST_R(REVERSED(RLOAD4_TOP(x, r)) * RLOAD4(y, r), r);
     return lanes_added(acc);
 }
 
-static inline VEC double known_table_vec(const mconv *m)
+static inline VEC double known_table_vec(const mop *o)
 {
-    const double *x = m->x, *y = m->y, *w = m->w;
-    const int k = m->k, jl = m->jl, jh = m->jh;
+    const double *x = o->a, *y = o->b, *w = o->c;
+    const int n = o->arg;
     __m256d acc = _mm256_set1_pd(-0.0);
-    int j = jh;
-    for (; j - 3 >= jl; j -= 4)
-        acc += REVERSED(LOAD4(w + j - 3) * LOAD4(x + j - 3)) * LOAD4(y + k - j);
-    int r = j - jl + 1;
+    int i = 0;
+    for (; i + 4 <= n; i += 4, x -= 4, y += 4, w -= 4)
+        acc += REVERSED(LOAD4(w) * LOAD4(x)) * LOAD4(y);
+    int r = n - i;
     if (r > 0) {
-        __m256d wx = REVERSED(RLOAD4_TOP(w + j - 3, r) * RLOAD4_TOP(x + j - 3, r));
-        acc += PAST_R(wx * RLOAD4(y + k - j, r), r);
+        __m256d wx = REVERSED(RLOAD4_TOP(w, r) * RLOAD4_TOP(x, r));
+        acc += PAST_R(wx * RLOAD4(y, r), r);
     }
     return lanes_added(acc);
 }
 
-static VEC double known_pair_vec(const mconv *m, mconv *second)
+static VEC double known_pair_vec(const mop *o)
 {
-    const double *x = m->x, *y = m->y, *z = second->y, *w = m->w;
-    const int k = m->k, jl = m->jl, jh = m->jh;
+    const double *x = o->a, *y = o->b, *w = o->c, *z = o->m->z;
+    const int n = o->arg;
     __m256d acc = _mm256_set1_pd(-0.0), acc2 = acc;
-    int j = jh;
-    for (; j - 3 >= jl; j -= 4) {
-        __m256d wx = REVERSED(LOAD4(w + j - 3) * LOAD4(x + j - 3));
-        acc += wx * LOAD4(y + k - j);
-        acc2 += wx * LOAD4(z + k - j);
+    int i = 0;
+    for (; i + 4 <= n; i += 4, x -= 4, y += 4, z += 4, w -= 4) {
+        __m256d wx = REVERSED(LOAD4(w) * LOAD4(x));
+        acc += wx * LOAD4(y);
+        acc2 += wx * LOAD4(z);
     }
-    int r = j - jl + 1;
+    int r = n - i;
     if (r > 0) {
-        __m256d wx = REVERSED(RLOAD4_TOP(w + j - 3, r) * RLOAD4_TOP(x + j - 3, r));
-        acc += PAST_R(wx * RLOAD4(y + k - j, r), r);
-        acc2 += PAST_R(wx * RLOAD4(z + k - j, r), r);
+        __m256d wx = REVERSED(RLOAD4_TOP(w, r) * RLOAD4_TOP(x, r));
+        acc += PAST_R(wx * RLOAD4(y, r), r);
+        acc2 += PAST_R(wx * RLOAD4(z, r), r);
     }
-    second->known = lanes_added(acc2);
+    o->m->second->known = lanes_added(acc2);
     return lanes_added(acc);
 }
 #else
