@@ -27,32 +27,33 @@
 
 /* ---- the known terms, one at a time ----------------------------------------- */
 
-#define T_PLAIN(j) (x[j] * y[k - (j)])
-#define T_TABLE(j) (w[j] * x[j] * y[k - (j)])
-#define T_SECOND(j) (w[j] * x[j] * z[k - (j)])
+/* The i-th known term (j = jh - i), from the op's starts (prog_ops.h: mop):
+ * x[j] = a[3 - i], w[j] = c[3 - i], y[k-j] = b[i]. */
+#define T_PLAIN(i) (a[3 - (i)] * b[i])
+#define T_TABLE(i) (c[3 - (i)] * a[3 - (i)] * b[i])
+#define T_SECOND(i) (c[3 - (i)] * a[3 - (i)] * z[i])
 
-/* out = the sum of the known terms j = jh down to jl (-0 when there are
- * none): the i-th term into lane i mod 4, lanes added as rule.h says. */
+/* out = the sum of the n known terms (-0 when there are none): the i-th
+ * term into lane i mod 4, lanes added as rule.h says. */
 #define KNOWN_SUM(out, TERM)                                                                       \
     do {                                                                                           \
         double l0 = -0.0, l1 = -0.0, l2 = -0.0, l3 = -0.0;                                         \
-        int j = jh;                                                                                \
-        for (; j - 3 >= jl; j -= 4)                                                                \
-            l0 += TERM(j), l1 += TERM(j - 1), l2 += TERM(j - 2), l3 += TERM(j - 3);                \
-        if (j >= jl)                                                                               \
-            l0 += TERM(j);                                                                         \
-        if (j - 1 >= jl)                                                                           \
-            l1 += TERM(j - 1);                                                                     \
-        if (j - 2 >= jl)                                                                           \
-            l2 += TERM(j - 2);                                                                     \
+        int i = 0;                                                                                 \
+        for (; i + 4 <= n; i += 4)                                                                 \
+            l0 += TERM(i), l1 += TERM(i + 1), l2 += TERM(i + 2), l3 += TERM(i + 3);                \
+        if (i < n)                                                                                 \
+            l0 += TERM(i);                                                                         \
+        if (i + 1 < n)                                                                             \
+            l1 += TERM(i + 1);                                                                     \
+        if (i + 2 < n)                                                                             \
+            l2 += TERM(i + 2);                                                                     \
         out = (l0 + l1) + (l2 + l3);                                                               \
     } while (0)
 
 static inline double known_plain(const mop *o)
 {
-    const mconv *m = o->m;
-    const double *x = m->x, *y = m->y;
-    const int k = m->k, jl = m->jl, jh = m->jh;
+    const double *a = o->a, *b = o->b;
+    const int n = o->arg;
     double s;
     KNOWN_SUM(s, T_PLAIN);
     return s;
@@ -60,9 +61,8 @@ static inline double known_plain(const mop *o)
 
 static inline double known_table(const mop *o)
 {
-    const mconv *m = o->m;
-    const double *x = m->x, *y = m->y, *w = m->w;
-    const int k = m->k, jl = m->jl, jh = m->jh;
+    const double *a = o->a, *b = o->b, *c = o->c;
+    const int n = o->arg;
     double s;
     KNOWN_SUM(s, T_TABLE);
     return s;
@@ -71,12 +71,10 @@ static inline double known_table(const mop *o)
 /* Both known sums of a pair (mconv); the second's left in its known. */
 static double known_pair(const mop *o)
 {
-    const mconv *m = o->m;
-    mconv *second = m->second;
-    const double *x = m->x, *y = m->y, *z = second->y, *w = m->w;
-    const int k = m->k, jl = m->jl, jh = m->jh;
+    const double *a = o->a, *b = o->b, *c = o->c, *z = o->m->z;
+    const int n = o->arg;
     double s;
-    KNOWN_SUM(second->known, T_SECOND);
+    KNOWN_SUM(o->m->second->known, T_SECOND);
     KNOWN_SUM(s, T_TABLE);
     return s;
 }
