@@ -528,6 +528,25 @@ static int conv_code(const mconv *m)
     return M_CONV + m->kind;
 }
 
+/* A convolution's op: its mconv and where its known terms start (mop);
+ * nothing is formed from the pointers when there are no known terms. */
+static void conv_op(mop *o, mconv *m)
+{
+    o->m = m;
+    o->arg = m->jh - m->jl + 1;
+    o->a = o->b = o->c = NULL;
+    if (m->partner)
+        m->z = NULL;
+    if (o->arg <= 0)
+        return;
+    o->a = m->x + m->jh - 3;
+    o->b = m->y + m->k - m->jh;
+    if (m->kind != CV_PLAIN)
+        o->c = m->w + m->jh - 3;
+    if (m->partner)
+        m->z = m->second->y + m->k - m->jh;
+}
+
 static hl_prog *finish(rec *r, double *reg, int ncode, int *start, int nk)
 {
     hl_prog *p = hl_xcalloc(1, sizeof *p);
@@ -540,11 +559,8 @@ static hl_prog *finish(rec *r, double *reg, int ncode, int *start, int nk)
     for (int i = 0; i < r->nops; i++) {
         const rop *o = &r->ops[i];
         int code = o->code == M_CONV ? conv_code(&r->cv[o->arg]) : o->code;
-        p->op[i] = (mop){NULL, code, o->arg, at(&s, o->d), at(&s, o->a), at(&s, o->b), {NULL}};
-        if (o->code == M_CONV)
-            p->op[i].m = &r->cv[o->arg];
-        else
-            p->op[i].c = at(&s, o->c);
+        p->op[i] =
+            (mop){NULL, code, o->arg, at(&s, o->d), at(&s, o->a), at(&s, o->b), at(&s, o->c), NULL};
     }
     p->cv = r->cv;
     p->wts = r->wts ? r->wts : hl_xmalloc(1);
@@ -568,6 +584,9 @@ static hl_prog *finish(rec *r, double *reg, int ncode, int *start, int nk)
             m->f[j].q = at(&s, m->f[j].lq);
         }
     }
+    for (int i = 0; i < r->nops; i++)
+        if (r->ops[i].code == M_CONV)
+            conv_op(&p->op[i], &p->cv[r->ops[i].arg]);
     p->start = start;
     p->nk = nk;
     p->nop = r->nops;

@@ -7,14 +7,14 @@
 #define CAT(a, b) CAT_(a, b)
 
 /* a convolution: its known sum, if it has known terms, then its fresh terms */
-static inline __attribute__((always_inline)) RUN_TARGET double CAT(RUN, _plain)(const mconv *m)
+static inline __attribute__((always_inline)) RUN_TARGET double CAT(RUN, _plain)(const mop *o)
 {
-    return add_fresh(m, KNOWN_PLAIN(m));
+    return add_fresh(o->m, KNOWN_PLAIN(o));
 }
 
-static inline __attribute__((always_inline)) RUN_TARGET double CAT(RUN, _table)(const mconv *m)
+static inline __attribute__((always_inline)) RUN_TARGET double CAT(RUN, _table)(const mop *o)
 {
-    return add_fresh(m, KNOWN_TABLE(m));
+    return add_fresh(o->m, KNOWN_TABLE(o));
 }
 
 /* Threaded code: each op holds its handler's address (hl_prog_bind), so a
@@ -66,28 +66,28 @@ sincos_:
     sincos(*o->a, o->d, (double *)o->c);
     NEXT();
 conv_:
-    conv_post(o->m, CAT(RUN, _plain)(o->m), o->d);
+    conv_post(o->m, CAT(RUN, _plain)(o), o->d);
     NEXT();
 conv_t:
-    conv_post(o->m, CAT(RUN, _table)(o->m), o->d);
+    conv_post(o->m, CAT(RUN, _table)(o), o->d);
     NEXT();
 conv_w:
     conv_run_weights(o->m);
-    conv_post(o->m, CAT(RUN, _table)(o->m), o->d);
+    conv_post(o->m, CAT(RUN, _table)(o), o->d);
     NEXT();
 conv_p : {
     mconv *m = o->m; /* it writes its partner's known sum */
-    conv_post(m, add_fresh(m, KNOWN_PAIR(m, m->second)), o->d);
+    conv_post(m, add_fresh(m, KNOWN_PAIR(o)), o->d);
     NEXT();
 }
 conv_l:
     conv_post(o->m, add_fresh(o->m, o->m->known), o->d);
     NEXT();
 conv_0:
-    *o->d = CAT(RUN, _plain)(o->m);
+    *o->d = CAT(RUN, _plain)(o);
     NEXT();
 conv_t0:
-    *o->d = CAT(RUN, _table)(o->m);
+    *o->d = CAT(RUN, _table)(o);
     NEXT();
 ode_:
     if (!ode)

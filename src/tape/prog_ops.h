@@ -39,22 +39,24 @@ typedef struct mconv mconv;
 
 /* A micro-operation: *d = a op b (op c); M_CALL: arg is the hl_pfn;
  * M_SINCOS: *d = sin a, *c = cos a (glibc's sincos gives sin's and cos's
- * bits); M_CONV: *d = the convolution m (cv[arg]).  go: the address of
- * code's handler in the loop that runs the program (threaded code: a step
- * is one indirect jump, no table).  m is a pointer, not found from arg,
- * because the loop's time goes into chains of dependent loads: a
- * convolution's data was four loads deep (op, arg, its fields, the data),
- * now three, like the old interpreter's (5-7 % per call, all three
- * systems of bench/taylor_interp.c). */
+ * bits); M_CONV: *d = the convolution m (cv[arg] while recording).  go: the
+ * address of code's handler in the loop that runs the program (threaded
+ * code: a step is one indirect jump, no table).
+ *
+ * A convolution's op also holds where its known terms start, so that
+ * their loads are two deep (op, data), as in the old switch, not four
+ * (op, index, field, data): the loop's time goes into such chains of
+ * dependent loads (bench/taylor_interp.c: each level fewer took 5-8 % per
+ * call on all three systems).  Then arg is the number of known terms (<= 0
+ * for none), a = x + jh - 3 and c = w + jh - 3 (the first four x[j] and
+ * w[j], j = jh down), b = y + k - jh (their y[k-j]); the known sum walks a
+ * and c down, b up. */
 typedef struct mop {
     const void *go;
     int code, arg;
     double *d;
-    const double *a, *b;
-    union {
-        const double *c;
-        mconv *m;
-    };
+    const double *a, *b, *c;
+    mconv *m;
 } mop;
 
 /* A fresh term (rule.h): (w *p) *q, w its weight (1 for a plain term: 1 p is
@@ -95,7 +97,8 @@ struct mconv {
      * so summing them early changes no bit).  partner: the second's index
      * + 1 in the first, 0 otherwise; known_done in the second. */
     int partner, known_done;
-    mconv *second; /* the partner itself (cv[partner - 1]), for the run */
+    mconv *second;   /* the partner itself (cv[partner - 1]), for the run */
+    const double *z; /* the partner's y + k - jh (mop) */
     double known;
     /* CV_WEIGHTED: wa, wb are values of the run, the same at every step of
      * a flow; w[j] = wa j + wb is computed again only when their bits

@@ -27,52 +27,54 @@
 
 /* ---- the known terms, one at a time ----------------------------------------- */
 
-#define T_PLAIN(j) (x[j] * y[k - (j)])
-#define T_TABLE(j) (w[j] * x[j] * y[k - (j)])
-#define T_SECOND(j) (w[j] * x[j] * z[k - (j)])
+/* The i-th known term (j = jh - i), from the op's starts (prog_ops.h: mop):
+ * x[j] = a[3 - i], w[j] = c[3 - i], y[k-j] = b[i]. */
+#define T_PLAIN(i) (a[3 - (i)] * b[i])
+#define T_TABLE(i) (c[3 - (i)] * a[3 - (i)] * b[i])
+#define T_SECOND(i) (c[3 - (i)] * a[3 - (i)] * z[i])
 
-/* out = the sum of the known terms j = jh down to jl (-0 when there are
- * none): the i-th term into lane i mod 4, lanes added as rule.h says. */
+/* out = the sum of the n known terms (-0 when there are none): the i-th
+ * term into lane i mod 4, lanes added as rule.h says. */
 #define KNOWN_SUM(out, TERM)                                                                       \
     do {                                                                                           \
         double l0 = -0.0, l1 = -0.0, l2 = -0.0, l3 = -0.0;                                         \
-        int j = jh;                                                                                \
-        for (; j - 3 >= jl; j -= 4)                                                                \
-            l0 += TERM(j), l1 += TERM(j - 1), l2 += TERM(j - 2), l3 += TERM(j - 3);                \
-        if (j >= jl)                                                                               \
-            l0 += TERM(j);                                                                         \
-        if (j - 1 >= jl)                                                                           \
-            l1 += TERM(j - 1);                                                                     \
-        if (j - 2 >= jl)                                                                           \
-            l2 += TERM(j - 2);                                                                     \
+        int i = 0;                                                                                 \
+        for (; i + 4 <= n; i += 4)                                                                 \
+            l0 += TERM(i), l1 += TERM(i + 1), l2 += TERM(i + 2), l3 += TERM(i + 3);                \
+        if (i < n)                                                                                 \
+            l0 += TERM(i);                                                                         \
+        if (i + 1 < n)                                                                             \
+            l1 += TERM(i + 1);                                                                     \
+        if (i + 2 < n)                                                                             \
+            l2 += TERM(i + 2);                                                                     \
         out = (l0 + l1) + (l2 + l3);                                                               \
     } while (0)
 
-static inline double known_plain(const mconv *m)
+static inline double known_plain(const mop *o)
 {
-    const double *x = m->x, *y = m->y;
-    const int k = m->k, jl = m->jl, jh = m->jh;
+    const double *a = o->a, *b = o->b;
+    const int n = o->arg;
     double s;
     KNOWN_SUM(s, T_PLAIN);
     return s;
 }
 
-static inline double known_table(const mconv *m)
+static inline double known_table(const mop *o)
 {
-    const double *x = m->x, *y = m->y, *w = m->w;
-    const int k = m->k, jl = m->jl, jh = m->jh;
+    const double *a = o->a, *b = o->b, *c = o->c;
+    const int n = o->arg;
     double s;
     KNOWN_SUM(s, T_TABLE);
     return s;
 }
 
 /* Both known sums of a pair (mconv); the second's left in its known. */
-static double known_pair(const mconv *m, mconv *second)
+static double known_pair(const mop *o)
 {
-    const double *x = m->x, *y = m->y, *z = second->y, *w = m->w;
-    const int k = m->k, jl = m->jl, jh = m->jh;
+    const double *a = o->a, *b = o->b, *c = o->c, *z = o->m->z;
+    const int n = o->arg;
     double s;
-    KNOWN_SUM(second->known, T_SECOND);
+    KNOWN_SUM(o->m->second->known, T_SECOND);
     KNOWN_SUM(s, T_TABLE);
     return s;
 }
@@ -113,54 +115,54 @@ static inline VEC double lanes_added(__m256d acc)
     return _mm256_cvtsd_f64(pairs) + _mm_cvtsd_f64(_mm256_extractf128_pd(pairs, 1));
 }
 
-static inline VEC double known_plain_vec(const mconv *m)
+static inline VEC double known_plain_vec(const mop *o)
 {
-    const double *x = m->x, *y = m->y;
-    const int k = m->k, jl = m->jl, jh = m->jh;
+    const double *x = o->a, *y = o->b;
+    const int n = o->arg;
     __m256d acc = _mm256_set1_pd(-0.0);
-    int j = jh;
-    for (; j - 3 >= jl; j -= 4)
-        acc += REVERSED(LOAD4(x + j - 3)) * LOAD4(y + k - j);
-    int r = j - jl + 1;
+    int i = 0;
+    for (; i + 4 <= n; i += 4, x -= 4, y += 4)
+        acc += REVERSED(LOAD4(x)) * LOAD4(y);
+    int r = n - i;
     if (r > 0)
-        acc += PAST_R(REVERSED(RLOAD4_TOP(x + j - 3, r)) * RLOAD4(y + k - j, r), r);
+        acc += PAST_R(REVERSED(RLOAD4_TOP(x, r)) * RLOAD4(y, r), r);
     return lanes_added(acc);
 }
 
-static inline VEC double known_table_vec(const mconv *m)
+static inline VEC double known_table_vec(const mop *o)
 {
-    const double *x = m->x, *y = m->y, *w = m->w;
-    const int k = m->k, jl = m->jl, jh = m->jh;
+    const double *x = o->a, *y = o->b, *w = o->c;
+    const int n = o->arg;
     __m256d acc = _mm256_set1_pd(-0.0);
-    int j = jh;
-    for (; j - 3 >= jl; j -= 4)
-        acc += REVERSED(LOAD4(w + j - 3) * LOAD4(x + j - 3)) * LOAD4(y + k - j);
-    int r = j - jl + 1;
+    int i = 0;
+    for (; i + 4 <= n; i += 4, x -= 4, y += 4, w -= 4)
+        acc += REVERSED(LOAD4(w) * LOAD4(x)) * LOAD4(y);
+    int r = n - i;
     if (r > 0) {
-        __m256d wx = REVERSED(RLOAD4_TOP(w + j - 3, r) * RLOAD4_TOP(x + j - 3, r));
-        acc += PAST_R(wx * RLOAD4(y + k - j, r), r);
+        __m256d wx = REVERSED(RLOAD4_TOP(w, r) * RLOAD4_TOP(x, r));
+        acc += PAST_R(wx * RLOAD4(y, r), r);
     }
     return lanes_added(acc);
 }
 
-static VEC double known_pair_vec(const mconv *m, mconv *second)
+static VEC double known_pair_vec(const mop *o)
 {
-    const double *x = m->x, *y = m->y, *z = second->y, *w = m->w;
-    const int k = m->k, jl = m->jl, jh = m->jh;
+    const double *x = o->a, *y = o->b, *w = o->c, *z = o->m->z;
+    const int n = o->arg;
     __m256d acc = _mm256_set1_pd(-0.0), acc2 = acc;
-    int j = jh;
-    for (; j - 3 >= jl; j -= 4) {
-        __m256d wx = REVERSED(LOAD4(w + j - 3) * LOAD4(x + j - 3));
-        acc += wx * LOAD4(y + k - j);
-        acc2 += wx * LOAD4(z + k - j);
+    int i = 0;
+    for (; i + 4 <= n; i += 4, x -= 4, y += 4, z += 4, w -= 4) {
+        __m256d wx = REVERSED(LOAD4(w) * LOAD4(x));
+        acc += wx * LOAD4(y);
+        acc2 += wx * LOAD4(z);
     }
-    int r = j - jl + 1;
+    int r = n - i;
     if (r > 0) {
-        __m256d wx = REVERSED(RLOAD4_TOP(w + j - 3, r) * RLOAD4_TOP(x + j - 3, r));
-        acc += PAST_R(wx * RLOAD4(y + k - j, r), r);
-        acc2 += PAST_R(wx * RLOAD4(z + k - j, r), r);
+        __m256d wx = REVERSED(RLOAD4_TOP(w, r) * RLOAD4_TOP(x, r));
+        acc += PAST_R(wx * RLOAD4(y, r), r);
+        acc2 += PAST_R(wx * RLOAD4(z, r), r);
     }
-    second->known = lanes_added(acc2);
+    o->m->second->known = lanes_added(acc2);
     return lanes_added(acc);
 }
 #else
