@@ -249,7 +249,7 @@ static void test_carried(void)
     const hl_expr *Q = hl_add(P, q, hl_mul(P, D, ph));
     const hl_expr *H = hl_sub(P, hl_div(P, hl_mul(P, p, p), hl_num_si(P, 2)), hl_call(P, HL_COS, q));
     const hl_expr *kdk[3] = {Q, hl_sub(P, ph, hl_mul(P, h2, hl_call(P, HL_SIN, Q))), H};
-    /* q -> Q = q - D q^(3/2) - p, p -> p + Q^(3/2) / 1000: POWK on q and
+    /* q -> Q = q - D q^(3/2) - p, p -> p + Q^(3/2) / 1000: POW3H on q and
      * on Q; q decreases through 0, where the power is NaN */
     const hl_expr *c32 = hl_num_frac(P, 3, 2);
     const hl_expr *Q2 = hl_sub(P, hl_sub(P, q, hl_mul(P, D, hl_pow(P, q, c32))), p);
