@@ -34,11 +34,17 @@
 
 #define CLI_MPI_PLUGIN "hamlie-mpi.so"
 #define CLI_MPI_ENTRY "hamlie_mpi_plugin" /* const cli_mpi_api *hamlie_mpi_plugin(void) */
-#define CLI_MPI_VERSION 1
+#define CLI_MPI_VERSION 2
 
 /* What the protocol needs of the sweep; the callbacks' arg is job.arg. */
 typedef struct cli_mpi_job {
     int ncols;   /* doubles in a row */
+    /* the arrays of a result (sweep.h, "Arrays"): bit k set when kind k
+     * travels; width doubles a row; about how many bytes of them a member
+     * gives (for chunk sizes; 0: unknown or none) */
+    unsigned arrays;
+    int width;
+    long member_bytes;
     long group;  /* members per group (>= 1): chunks hold whole groups */
     int threads; /* this rank's compute threads (chunk sizes) */
     uint64_t fingerprint;

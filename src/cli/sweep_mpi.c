@@ -127,7 +127,14 @@ static int compute(void *arg, const long *members, long n, hl_sweep_fn emit, voi
 
 static cli_mpi_job job_of(serve_ctx *c)
 {
+    unsigned arrays = 0;
+    for (int k = 0; k < HL_SWEEP_NARRAYS; k++)
+        arrays |= (unsigned)(hl_sweep_has_array(c->sw, k) != 0) << k;
+    long traj_bytes = hl_sweep_traj_rows_max(c->sw) * hl_sweep_array_width(c->sw) * 8;
     cli_mpi_job job = {.ncols = hl_sweep_ncols(c->sw),
+                       .arrays = arrays,
+                       .width = hl_sweep_array_width(c->sw),
+                       .member_bytes = traj_bytes,
                        .group = group_size(c->sw),
                        .threads = mpi.threads,
                        .fingerprint = hl_sweep_fingerprint(c->sw),
