@@ -184,12 +184,19 @@ hl_status sweep_write_csv(const hl_sweep *sw, const hl_sweep_table *tab, const c
     name[HL_SWEEP_NARRAYS] = hl_xstrdup(path);
     if (st == HL_OK)
         st = write_temp(&tmp[HL_SWEEP_NARRAYS], path, sw, tab, -1, err);
+    int renamed = 0; /* files in place: removed again if a later one fails */
     for (int k = 0; k <= HL_SWEEP_NARRAYS; k++) {
-        if (tmp[k] != NULL && st == HL_OK && rename(tmp[k], name[k]) != 0)
+        if (tmp[k] == NULL || st != HL_OK)
+            continue;
+        if (rename(tmp[k], name[k]) == 0)
+            renamed |= 1 << k;
+        else
             st = hl_error_set(err, HL_EIO, NULL, -1, 0, "writing '%s' failed: %s", name[k],
                               strerror(errno));
-        if (tmp[k] != NULL && st != HL_OK)
-            remove(tmp[k]);
+    }
+    for (int k = 0; k <= HL_SWEEP_NARRAYS; k++) {
+        if (st != HL_OK && tmp[k] != NULL)
+            remove(renamed >> k & 1 ? name[k] : tmp[k]);
         free(tmp[k]);
         free(name[k]);
     }
