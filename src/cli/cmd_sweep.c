@@ -388,6 +388,7 @@ int cmd_sweep(int argc, char **argv, const cli_command *cmd)
                                         check_opts, CLI_OPT_H | CLI_OPT_PROGRESS,      64};
     char **av;
     hl_system *sys = NULL;
+    int quiet = cli_mpi_quiet_begin(); /* under mpirun: errors said by rank 0 alone */
     int rc = cli_begin(&av, &o, &sys, argc, argv, cmd, &spec, &s);
     char *csv = NULL;
     if (rc < 0 && s.init_file != NULL && (csv = cli_read_file(s.init_file)) == NULL)
@@ -420,6 +421,7 @@ int cmd_sweep(int argc, char **argv, const cli_command *cmd)
         else /* the message names the field: "grid: ...", "schemes: ..." */
             rc = cli_fail(&err);
     }
+    cli_mpi_quiet_end(quiet);
     if (rc < 0) /* under mpirun: the ranks but 0 compute in there */
         rc = cli_sweep_mpi_begin(sw, s.mpi, &s.threads, s.threads_s != NULL);
     if (rc < 0)

@@ -94,6 +94,16 @@ typedef const cli_mpi_api *(*cli_mpi_entry_fn)(void);
  * PMIX_RANK or PMI_SIZE in the environment). */
 int cli_mpi_launched(void);
 
+/* This process's rank from the launcher's environment (0 outside one). */
+int cli_mpi_env_rank(void);
+/* Every rank reads the same command line, so a usage or input error would
+ * be said once per rank: on ranks but 0 of a launched job, standard error
+ * goes to /dev/null until cli_mpi_quiet_end (the exit status is the same
+ * on every rank; rank 0 says why).  Returns what quiet_end restores (-1:
+ * nothing was silenced). */
+int cli_mpi_quiet_begin(void);
+void cli_mpi_quiet_end(int saved);
+
 /* Threads per rank when the user gave none: the cores divided among the
  * ranks of this node (OMPI_COMM_WORLD_LOCAL_SIZE), at least 1. */
 int cli_mpi_default_threads(int cores);
