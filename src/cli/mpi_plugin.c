@@ -537,11 +537,26 @@ static void worker_request_reset(worker *w, const cli_mpi_job *job)
 
 /* The next chunk into *members (grown as needed): its length, 0 for
  * "done", -1 without memory. */
+/* A message from rank 0, waited for in sleeps from 50 us to POLL_NS:
+ * Open MPI's blocking MPI_Probe spins a core all the while, and on a
+ * loaded machine rank 0's answer may take milliseconds to come. */
+static void wait_message(MPI_Status *st)
+{
+    int flag = 0;
+    long pause_ns = 50000;
+    MPI_Iprobe(0, MPI_ANY_TAG, comm, &flag, st);
+    while (!flag) {
+        nanosleep(&(struct timespec){0, pause_ns}, NULL);
+        pause_ns = pause_ns * 2 < POLL_NS ? pause_ns * 2 : POLL_NS;
+        MPI_Iprobe(0, MPI_ANY_TAG, comm, &flag, st);
+    }
+}
+
 static int receive_chunk(long **members)
 {
     MPI_Status st;
     int n = 0;
-    MPI_Probe(0, MPI_ANY_TAG, comm, &st);
+    wait_message(&st);
     if (st.MPI_TAG != TAG_CHUNK) { /* TAG_DONE */
         MPI_Recv(NULL, 0, MPI_BYTE, 0, st.MPI_TAG, comm, MPI_STATUS_IGNORE);
         return 0;
