@@ -1,6 +1,7 @@
 /* Fuzz target for a sweep's spec (sweep.h): the input's lines are the
- * points (a grid, or random bounds when it starts with '~', or nothing:
- * then the CSV), the parameter values, the schemes and the steps; the rest
+ * points (a grid, or random bounds when it starts with '~', or an event
+ * surface on a fixed grid when it starts with '!', or nothing: then the
+ * CSV), the parameter values, the schemes and the steps; the rest
  * is a points CSV.  Only hl_sweep_new runs (no member).  A failure points
  * inside the field it names; an accepted sweep has members and columns. */
 #include "fuzz.h"
@@ -33,7 +34,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                           .seed = 5};
     if (points[0] == '~')
         spec.random = points + 1;
-    else if (points[0] != '\0')
+    else if (points[0] == '!') {
+        spec.grid = "q=0:1:2,p=0.5";
+        spec.event = points + 1;
+        spec.save_every = 2;
+    } else if (points[0] != '\0')
         spec.grid = points;
     else
         spec.points_csv = rest;
@@ -41,14 +46,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     hl_error err;
     hl_error_clear(&err);
     int st = hl_sweep_new(&sw, &spec, &err);
-    const char *fields[] = {spec.grid,    spec.random, spec.params,
-                            spec.schemes, spec.dts,    spec.points_csv};
-    for (int i = 0; i < 6; i++)
+    const char *fields[] = {spec.grid, spec.random, spec.params,    spec.schemes,
+                            spec.dts,  spec.event,  spec.points_csv};
+    for (int i = 0; i < 7; i++)
         if (fields[i] != NULL)
             fuzz_check_error(st, &err, fields[i]);
     if (st != 0 && err.src != NULL) { /* a position is in one of the fields */
         int found = 0;
-        for (int i = 0; i < 6; i++)
+        for (int i = 0; i < 7; i++)
             found |= fields[i] != NULL && err.src == fields[i];
         if (!found)
             abort();

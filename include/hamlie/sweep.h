@@ -82,6 +82,12 @@ typedef struct hl_sweep_spec {
     int reference;          /* measure the error against the Taylor reference */
     int order;              /* also run at dt/2 and give the observed order */
     int chaos;              /* MEGNO and mLCE of each point (hl_chaos, tol) */
+    /* optional arrays per member (see "Arrays" below): */
+    long save_every;   /* > 0: the trajectory every save_every steps (for
+                          "lie": output rows of spacing dt), 0: none */
+    const char *event; /* a surface "g" or "lhs = rhs" (as hl_run_event): its
+                          crossings, or NULL */
+    int direction;     /* of the crossings: 1 up, -1 down, 0 both (hl_event_dir) */
 } hl_sweep_spec;
 
 typedef struct hl_sweep hl_sweep;
@@ -112,12 +118,32 @@ const hl_sweep_spec *hl_sweep_get_spec(const hl_sweep *sw); /* its own copies */
  * hamlie's version): a journal or file of another sweep is refused. */
 uint64_t hl_sweep_fingerprint(const hl_sweep *sw);
 
+/* Arrays.  With spec.save_every, a member also gives its trajectory: the
+ * rows of hl_run_fixed / hl_run_adaptive at every save_every-th step (and
+ * the last); with spec.event, the crossings of the surface in the
+ * direction (hl_run_event: on the Taylor polynomial for "lie", on the
+ * cubic Hermite interpolant of each step otherwise).  Each is a list of
+ * rows of hl_sweep_array_width values: t, then the state (q then p).  A
+ * failed member's arrays end at its last good step.  Kinds: */
+enum { HL_SWEEP_TRAJ = 0, HL_SWEEP_CROSS = 1, HL_SWEEP_NARRAYS = 2 };
+/* 1 + 2N */
+int hl_sweep_array_width(const hl_sweep *sw);
+/* Whether the sweep gives arrays of kind (HL_SWEEP_TRAJ, HL_SWEEP_CROSS). */
+int hl_sweep_has_array(const hl_sweep *sw, int kind);
+/* The most trajectory rows a member can give (0 without save_every):
+ * for sizing buffers and chunks; crossings are not bounded. */
+long hl_sweep_traj_rows_max(const hl_sweep *sw);
+
 #define HL_SWEEP_REASON 160
 typedef struct hl_sweep_result {
     long member;
     hl_status status;
     char reason[HL_SWEEP_REASON]; /* "" when status == HL_OK */
     const double *row;            /* hl_sweep_ncols values */
+    /* the arrays (nrows[k] rows of hl_sweep_array_width values each; 0 and
+     * NULL for a kind the sweep does not give) */
+    long nrows[HL_SWEEP_NARRAYS];
+    const double *array[HL_SWEEP_NARRAYS];
 } hl_sweep_result;
 
 /* Called once per member as it completes (in any order, one call at a
@@ -145,13 +171,23 @@ const double *hl_sweep_table_row(const hl_sweep_table *tab, long member);
 hl_status hl_sweep_table_status(const hl_sweep_table *tab, long member);
 const char *hl_sweep_table_reason(const hl_sweep_table *tab, long member);
 long hl_sweep_table_done(const hl_sweep_table *tab);
+/* Member's array of kind: *nrows rows of hl_sweep_array_width values
+ * (NULL and 0 when none). */
+const double *hl_sweep_table_array(const hl_sweep_table *tab, long member, int kind, long *nrows);
 
 /* The table to path: ".h5" an HDF5 file (its layout in docs/sweep.md), any
  * other name CSV (the columns, then status and reason).  Written to a
  * temporary name beside path and renamed when complete, so an error leaves
- * nothing half-written; the same table gives the same bytes. */
+ * nothing half-written; the same table gives the same bytes.  The arrays:
+ * in the HDF5 file (/trajectories, /crossings); with CSV, in sidecar files
+ * beside path (hl_sweep_array_path), which "-" (standard output) cannot
+ * have (HL_EINVAL). */
 hl_status hl_sweep_write(const hl_sweep *sw, const hl_sweep_table *tab, const char *path,
                          hl_error *err);
+/* The CSV sidecar of kind for the table's path: "dir/s.csv" ->
+ * "dir/s-traj.csv" / "dir/s-cross.csv" (the suffix after the last '.' of
+ * the file name replaced; appended if none).  Caller frees. */
+char *hl_sweep_array_path(const char *path, int kind);
 
 /* ---- resuming ------------------------------------------------------------
  * A journal beside the output (path + ".journal") gets each result as it

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "cli/cli.h"
+#include "cli/crossings.h"
 #include "cli/mpi_plugin.h"
 #include "hamlie/h5.h"
 #include "hamlie/sweep.h"
@@ -47,11 +48,19 @@ const char cmd_sweep_help[] =
     "  --order              the observed order from dt and dt/2 (runs each member\n"
     "                       twice, against the reference)\n"
     "  --chaos              MEGNO <Y> and the mLCE of each point at --t\n"
+    "  --save-every K       also each member's trajectory, every K-th step (and the\n"
+    "                       last; for lie every K-th row of spacing --dt)\n"
+    "  --event G            also each member's crossings of the surface G = 0 (a\n"
+    "                       formula in the variables, or 'lhs = rhs'), located as by\n"
+    "                       run --event\n"
+    "  --direction D        up (G from < 0 to >= 0), down, or both (default)\n"
     "  --threads N          threads (default: every core; under mpirun, the cores\n"
     "                       shared among the node's ranks)\n"
     "  --mpi                spread the members over the ranks of an MPI job (the\n"
     "                       default under mpirun; docs/sweep-at-scale.md)\n"
-    "  --out FILE           FILE.csv or FILE.h5 (default: CSV on standard output)\n"
+    "  --out FILE           FILE.csv or FILE.h5 (default: CSV on standard output);\n"
+    "                       the arrays in FILE.h5, or beside FILE.csv in\n"
+    "                       FILE-traj.csv and FILE-cross.csv (member, t, the state)\n"
     "  --resume             continue an interrupted sweep from FILE.journal\n"
     "  --plot DIR           for a grid in two variables, a map per scheme and step\n"
     "                       of log10 max_dH (and of MEGNO with --chaos)\n"
@@ -73,9 +82,11 @@ const char cmd_sweep_help[] =
 typedef struct sweep_opts {
     const char *grid, *init_file, *random, *count_s, *seed_s, *scheme, *dt_s, *t_s, *tol_s;
     const char *threads_s, *out, *plot, *formats;
+    const char *save_every_s, *event, *direction_s;
     char *params; /* every --param joined with ',' */
     int reference, no_reference, order, chaos, resume, mpi;
-    long count, threads;
+    long count, threads, save_every;
+    hl_event_dir direction;
     unsigned long long seed;
     double t, tol;
 } sweep_opts;
@@ -87,10 +98,13 @@ static void found_opt(void *arg, int k, const char *value)
                            &s->scheme, &s->dt_s,      &s->t_s,    &s->tol_s,   &s->threads_s,
                            &s->out,    &s->plot,      &s->formats};
     int *flag[] = {&s->reference, &s->no_reference, &s->order, &s->chaos, &s->resume, &s->mpi};
+    const char **arrays[] = {&s->save_every_s, &s->event, &s->direction_s};
     if (k < 13)
         *slot[k] = value;
     else if (k < 19)
         *flag[k - 13] = 1;
+    else if (k > 19)
+        *arrays[k - 20] = value;
     else { /* --param, repeatable: joined as one list */
         size_t n = (s->params ? strlen(s->params) + 1 : 0) + strlen(value) + 1;
         char *p = hl_xmalloc(n);
@@ -140,6 +154,25 @@ static int check_numbers(sweep_opts *s, const cli_command *cmd)
     return -1;
 }
 
+/* --save-every, --event and --direction: the arrays go to files */
+static int check_arrays(sweep_opts *s, const cli_command *cmd)
+{
+    int rc;
+    if (s->save_every_s != NULL &&
+        (rc = cli_read_long(&s->save_every, s->save_every_s, "--save-every", 1, 1000000000000L,
+                            cmd)) >= 0)
+        return rc;
+    if (s->direction_s != NULL && s->event == NULL)
+        return cli_usage(cmd, "--direction is for the crossings of --event G");
+    s->direction = HL_EVENT_BOTH;
+    if (s->direction_s != NULL && crossings_direction(&s->direction, s->direction_s) != 0)
+        return cli_usage(cmd, "--direction wants up, down or both, not '%s'", s->direction_s);
+    if ((s->save_every_s != NULL || s->event != NULL) && s->out == NULL)
+        return cli_usage(cmd, "--save-every and --event write arrays to files: name one with "
+                              "--out FILE.h5 or FILE.csv");
+    return -1;
+}
+
 static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
 {
     sweep_opts *s = arg;
@@ -164,6 +197,9 @@ static int check_opts(void *arg, cli_opts *o, const cli_command *cmd)
         return cli_usage(cmd, "--resume continues the sweep of --out FILE: name it");
     if (s->formats != NULL && s->plot == NULL)
         return cli_usage(cmd, "--format is for the maps of --plot DIR");
+    int rc = check_arrays(s, cmd);
+    if (rc >= 0)
+        return rc;
     hl_error err; /* without libhdf5, say so before computing (and journaling) */
     if (hl_h5_is_h5_path(s->out) && hl_h5_available(&err) != HL_OK)
         return cli_fail(&err);
@@ -340,31 +376,19 @@ int cmd_sweep(int argc, char **argv, const cli_command *cmd)
     cli_opts o;
     memset(&s, 0, sizeof s);
     memset(&o, 0, sizeof o);
-    /* in found_opt's order: values, flags, then --param */
-    static const cli_own own[] = {{"--grid", 0},
-                                  {"--init-file", 0},
-                                  {"--random", 0},
-                                  {"--count", 0},
-                                  {"--seed", 0},
-                                  {"--scheme", 0},
-                                  {"--dt", 0},
-                                  {"--t", 0},
-                                  {"--tol", 0},
-                                  {"--threads", 0},
-                                  {"--out", 0},
-                                  {"--plot", 0},
-                                  {"--format", 0},
-                                  {"--reference", 1},
-                                  {"--no-reference", 1},
-                                  {"--order", 1},
-                                  {"--chaos", 1},
-                                  {"--resume", 1},
-                                  {"--mpi", 1},
-                                  {"--param", CLI_OWN_REPEAT}};
+    /* in found_opt's order: values, flags, --param, then the arrays' options */
+    static const cli_own own[] = {
+        {"--grid", 0},       {"--init-file", 0}, {"--random", 0},       {"--count", 0},
+        {"--seed", 0},       {"--scheme", 0},    {"--dt", 0},           {"--t", 0},
+        {"--tol", 0},        {"--threads", 0},   {"--out", 0},          {"--plot", 0},
+        {"--format", 0},     {"--reference", 1}, {"--no-reference", 1}, {"--order", 1},
+        {"--chaos", 1},      {"--resume", 1},    {"--mpi", 1},          {"--param", CLI_OWN_REPEAT},
+        {"--save-every", 0}, {"--event", 0},     {"--direction", 0}};
     static const cli_begin_spec spec = {own,        (int)(sizeof own / sizeof own[0]), found_opt,
                                         check_opts, CLI_OPT_H | CLI_OPT_PROGRESS,      64};
     char **av;
     hl_system *sys = NULL;
+    int quiet = cli_mpi_quiet_begin(); /* under mpirun: errors said by rank 0 alone */
     int rc = cli_begin(&av, &o, &sys, argc, argv, cmd, &spec, &s);
     char *csv = NULL;
     if (rc < 0 && s.init_file != NULL && (csv = cli_read_file(s.init_file)) == NULL)
@@ -385,7 +409,10 @@ int cmd_sweep(int argc, char **argv, const cli_command *cmd)
                         .tol = s.tol,
                         .reference = s.reference,
                         .order = s.order,
-                        .chaos = s.chaos};
+                        .chaos = s.chaos,
+                        .save_every = s.save_every,
+                        .event = s.event,
+                        .direction = (int)s.direction};
     hl_error err;
     hl_error_clear(&err);
     if (rc < 0 && hl_sweep_new(&sw, &sp, &err) != HL_OK) {
@@ -394,6 +421,7 @@ int cmd_sweep(int argc, char **argv, const cli_command *cmd)
         else /* the message names the field: "grid: ...", "schemes: ..." */
             rc = cli_fail(&err);
     }
+    cli_mpi_quiet_end(quiet);
     if (rc < 0) /* under mpirun: the ranks but 0 compute in there */
         rc = cli_sweep_mpi_begin(sw, s.mpi, &s.threads, s.threads_s != NULL);
     if (rc < 0)

@@ -5,7 +5,8 @@
  *
  * Messages (MPI_BYTE unless said; tags below):
  *   worker -> 0  REQUEST  header {fingerprint, nresults, threads} and the
- *                         results of its last chunk, packed (pack_result)
+ *                         results of its last chunk, packed (pack_result:
+ *                         the row, the reason and the arrays)
  *   0 -> worker  CHUNK    the members to compute (int64)
  *                DONE     no more work
  * Every request is answered, in order; a worker keeps IN_FLIGHT of them
@@ -45,6 +46,12 @@ static MPI_Comm comm = MPI_COMM_NULL;
  * keeps IN_FLIGHT requests open: the next chunk is there before it has
  * finished this one. */
 #define POLL_NS 1000000L
+/* ... and after idle polls the pause doubles up to this: on a loaded
+ * machine a wake-up costs far more than its 3 us (measured: rank 0's
+ * polling took 1 s of CPU in a 72 s sweep at load 20, 7 % of the
+ * sweep's CPU).  A worker still does not wait: its second open request
+ * covers a chunk (>= 4 groups a thread, milliseconds at the least) */
+#define POLL_MAX_NS 8000000L
 #define IN_FLIGHT 2
 
 typedef struct request_header {
@@ -87,8 +94,10 @@ static void bytes_put(bytes *b, const void *src, size_t n)
 }
 
 /* member (int64), status (int32), reason length (int32), the row, the
- * reason's bytes: a failed member's reason travels, an OK one's is empty */
-static void pack_result(bytes *b, const hl_sweep_result *r, int ncols)
+ * reason's bytes (a failed member's reason travels, an OK one's is
+ * empty), then each kind of array the job carries: rows (int64) and rows
+ * * width doubles */
+static void pack_result(bytes *b, const hl_sweep_result *r, const cli_mpi_job *job)
 {
     int64_t member = r->member;
     int32_t status = (int32_t)r->status;
@@ -97,18 +106,66 @@ static void pack_result(bytes *b, const hl_sweep_result *r, int ncols)
     bytes_put(b, &member, sizeof member);
     bytes_put(b, &status, sizeof status);
     bytes_put(b, &rlen, sizeof rlen);
-    bytes_put(b, r->row, (size_t)ncols * sizeof(double));
+    bytes_put(b, r->row, (size_t)job->ncols * sizeof(double));
     bytes_put(b, r->reason, len);
+    for (int k = 0; k < HL_SWEEP_NARRAYS; k++)
+        if (job->arrays >> k & 1) {
+            int64_t rows = r->array[k] != NULL ? r->nrows[k] : 0;
+            bytes_put(b, &rows, sizeof rows);
+            bytes_put(b, r->array[k], (size_t)rows * (size_t)job->width * sizeof(double));
+        }
 }
 
-/* One result from p (n bytes left) into r (row: space for ncols); the
- * bytes used, 0 if the message is malformed. */
-static size_t unpack_result(const unsigned char *p, size_t n, int ncols, hl_sweep_result *r,
-                            double *row)
+/* Where a result is unpacked: aligned copies of the message's bytes. */
+typedef struct unpacked {
+    double *row;
+    double *v[HL_SWEEP_NARRAYS];
+    size_t cap[HL_SWEEP_NARRAYS]; /* doubles */
+} unpacked;
+
+/* The arrays from p + at (n bytes in all); the new offset, 0 if malformed
+ * or -1 without memory. */
+static long unpack_arrays(const unsigned char *p, size_t at, size_t n, const cli_mpi_job *job,
+                          hl_sweep_result *r, unpacked *u)
+{
+    size_t width = (size_t)job->width;
+    for (int k = 0; k < HL_SWEEP_NARRAYS; k++) {
+        r->nrows[k] = 0;
+        r->array[k] = NULL;
+        if (!(job->arrays >> k & 1))
+            continue;
+        int64_t rows;
+        if (n < at + sizeof rows)
+            return 0;
+        memcpy(&rows, p + at, sizeof rows);
+        at += sizeof rows;
+        if (rows < 0 || width == 0 || (uint64_t)rows > (n - at) / (width * sizeof(double)))
+            return 0;
+        size_t len = (size_t)rows * width;
+        if (len > u->cap[k]) {
+            double *v = realloc(u->v[k], len * sizeof *v);
+            if (v == NULL)
+                return -1;
+            u->v[k] = v;
+            u->cap[k] = len;
+        }
+        memcpy(u->v[k], p + at, len * sizeof(double));
+        at += len * sizeof(double);
+        r->nrows[k] = (long)rows;
+        r->array[k] = u->v[k];
+    }
+    return (long)at;
+}
+
+/* One result from p (n bytes left) into r (its row and arrays in u); the
+ * bytes used, 0 if the message is malformed, -1 without memory. */
+static long unpack_result(const unsigned char *p, size_t n, const cli_mpi_job *job,
+                          hl_sweep_result *r, unpacked *u)
 {
     int64_t member;
     int32_t status, rlen;
-    size_t fixed = sizeof member + sizeof status + sizeof rlen + (size_t)ncols * sizeof(double);
+    size_t fixed =
+        sizeof member + sizeof status + sizeof rlen + (size_t)job->ncols * sizeof(double);
     if (n < fixed)
         return 0;
     memcpy(&member, p, sizeof member);
@@ -116,13 +173,13 @@ static size_t unpack_result(const unsigned char *p, size_t n, int ncols, hl_swee
     memcpy(&rlen, p + 12, sizeof rlen);
     if (rlen < 0 || rlen >= HL_SWEEP_REASON || n < fixed + (size_t)rlen)
         return 0;
-    memcpy(row, p + 16, (size_t)ncols * sizeof(double));
+    memcpy(u->row, p + 16, (size_t)job->ncols * sizeof(double));
     memcpy(r->reason, p + fixed, (size_t)rlen);
     r->reason[rlen] = '\0';
     r->member = (long)member;
     r->status = (hl_status)status;
-    r->row = row;
-    return fixed + (size_t)rlen;
+    r->row = u->row;
+    return unpack_arrays(p, fixed + (size_t)rlen, n, job, r, u);
 }
 
 /* ---- the master --------------------------------------------------------- */
@@ -153,7 +210,7 @@ static long next_chunk(master *m, int threads, long *first)
     long left = job->ntodo - m->next;
     if (left <= 0 || m->stop)
         return 0;
-    long bytes_cap = CHUNK_BYTES / (24 + 8L * job->ncols);
+    long bytes_cap = CHUNK_BYTES / (24 + 8L * job->ncols + job->member_bytes);
     long want = left / (SHARE * (long)m->size);
     /* a rank's threads share a chunk by groups: a few groups each */
     long least = 4L * (threads > 0 ? threads : 1) * job->group;
@@ -291,7 +348,7 @@ static int send_chunk(master *m, int dest, int threads)
 
 /* A worker's request: its results stored, its next chunk sent.  Returns
  * whether the worker goes on (0: it was told "done", or the sweep stops). */
-static int serve_request(master *m, int source, const unsigned char *p, size_t n, double *row)
+static int serve_request(master *m, int source, const unsigned char *p, size_t n, unpacked *u)
 {
     request_header h;
     const cli_mpi_job *job = m->job;
@@ -315,15 +372,18 @@ static int serve_request(master *m, int source, const unsigned char *p, size_t n
     size_t at = sizeof h;
     for (int64_t i = 0; i < h.nresults; i++) {
         hl_sweep_result r;
-        size_t used = unpack_result(p + at, n - at, job->ncols, &r, row);
-        if (used == 0) {
+        long used = unpack_result(p + at, n - at, job, &r, u);
+        if (used <= 0) {
             pthread_mutex_lock(&m->lock);
-            master_fail(m, "rank %d sent a malformed result (%lld of %lld)", source, (long long)i,
-                        (long long)h.nresults);
+            if (used < 0)
+                master_fail(m, "no memory for a result of rank %d", source);
+            else
+                master_fail(m, "rank %d sent a malformed result (%lld of %lld)", source,
+                            (long long)i, (long long)h.nresults);
             pthread_mutex_unlock(&m->lock);
             return 0;
         }
-        at += used;
+        at += (size_t)used;
         if (master_store(m, &r))
             return 0;
     }
@@ -348,20 +408,29 @@ static int master_local_running(master *m)
     return running;
 }
 
+/* The pause before the next poll: back to POLL_NS after a message, else
+ * doubled up to POLL_MAX_NS. */
+static void pause_poll(long *pause_ns)
+{
+    struct timespec ts = {0, *pause_ns};
+    nanosleep(&ts, NULL);
+    *pause_ns = *pause_ns * 2 < POLL_MAX_NS ? *pause_ns * 2 : POLL_MAX_NS;
+}
+
 /* A message from any worker, or none after a pause.  1 when a request was
  * answered "done", 2 when a worker gave up (an error), 0 otherwise; the
  * worker in *source. */
-static int serve_one(master *m, bytes *in, double *row, int *source)
+static int serve_one(master *m, bytes *in, unpacked *u, int *source, long *pause_ns)
 {
     int flag = 0, count = 0;
     MPI_Status st;
     reap_sends(m);
     MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, comm, &flag, &st);
     if (!flag) {
-        struct timespec ts = {0, POLL_NS};
-        nanosleep(&ts, NULL);
+        pause_poll(pause_ns);
         return 0;
     }
+    *pause_ns = POLL_NS;
     MPI_Get_count(&st, MPI_BYTE, &count);
     *source = st.MPI_SOURCE;
     in->n = 0;
@@ -385,7 +454,7 @@ static int serve_one(master *m, bytes *in, double *row, int *source)
         pthread_mutex_unlock(&m->lock);
         return 0;
     }
-    return !serve_request(m, st.MPI_SOURCE, in->p, (size_t)count, row);
+    return !serve_request(m, st.MPI_SOURCE, in->p, (size_t)count, u);
 }
 
 static int run_master(const cli_mpi_job *job, int size, char *msg, size_t msgsize)
@@ -402,23 +471,22 @@ static int run_master(const cli_mpi_job *job, int size, char *msg, size_t msgsiz
             master_fail(&m, "cannot start rank 0's compute thread");
         }
     }
-    double *row = malloc(((size_t)job->ncols + 1) * sizeof *row);
+    unpacked u = {.row = malloc(((size_t)job->ncols + 1) * sizeof *u.row)};
     bytes in = {0};
-    if (row == NULL)
+    if (u.row == NULL)
         master_fail(&m, "no memory");
     /* a worker is through once each of its open requests was answered "done" */
     int active = size - 1, *dones = calloc((size_t)size, sizeof *dones);
     if (dones == NULL)
         master_fail(&m, "no memory");
+    long pause_ns = POLL_NS;
     while ((active > 0 || master_local_running(&m)) && !master_should_stop(&m))
         if (active > 0) {
-            int source = 0, served = serve_one(&m, &in, row, &source);
+            int source = 0, served = serve_one(&m, &in, &u, &source, &pause_ns);
             if (served == 2 || (served == 1 && ++dones[source] == IN_FLIGHT))
                 active--;
-        } else {
-            struct timespec ts = {0, POLL_NS};
-            nanosleep(&ts, NULL);
-        }
+        } else
+            pause_poll(&pause_ns);
     if (local_started)
         pthread_join(local, NULL);
     /* every worker takes its answers before it is through; after a stop
@@ -431,7 +499,9 @@ static int run_master(const cli_mpi_job *job, int size, char *msg, size_t msgsiz
         free(m.sends);
         free(m.send_bufs);
     }
-    free(row);
+    free(u.row);
+    for (int k = 0; k < HL_SWEEP_NARRAYS; k++)
+        free(u.v[k]);
     free(in.p);
     free(dones);
     pthread_mutex_destroy(&m.lock);
@@ -446,13 +516,13 @@ static int run_master(const cli_mpi_job *job, int size, char *msg, size_t msgsiz
 
 typedef struct worker {
     bytes out;
-    int ncols;
+    const cli_mpi_job *job;
 } worker;
 
 static int worker_emit(const hl_sweep_result *r, void *arg)
 {
     worker *w = arg;
-    pack_result(&w->out, r, w->ncols);
+    pack_result(&w->out, r, w->job);
     if (!w->out.oom)
         ((request_header *)w->out.p)->nresults++; /* the buffer starts with it */
     return w->out.oom;
@@ -467,11 +537,26 @@ static void worker_request_reset(worker *w, const cli_mpi_job *job)
 
 /* The next chunk into *members (grown as needed): its length, 0 for
  * "done", -1 without memory. */
+/* A message from rank 0, waited for in sleeps from 50 us to POLL_NS:
+ * Open MPI's blocking MPI_Probe spins a core all the while, and on a
+ * loaded machine rank 0's answer may take milliseconds to come. */
+static void wait_message(MPI_Status *st)
+{
+    int flag = 0;
+    long pause_ns = 50000;
+    MPI_Iprobe(0, MPI_ANY_TAG, comm, &flag, st);
+    while (!flag) {
+        nanosleep(&(struct timespec){0, pause_ns}, NULL);
+        pause_ns = pause_ns * 2 < POLL_NS ? pause_ns * 2 : POLL_NS;
+        MPI_Iprobe(0, MPI_ANY_TAG, comm, &flag, st);
+    }
+}
+
 static int receive_chunk(long **members)
 {
     MPI_Status st;
     int n = 0;
-    MPI_Probe(0, MPI_ANY_TAG, comm, &st);
+    wait_message(&st);
     if (st.MPI_TAG != TAG_CHUNK) { /* TAG_DONE */
         MPI_Recv(NULL, 0, MPI_BYTE, 0, st.MPI_TAG, comm, MPI_STATUS_IGNORE);
         return 0;
@@ -504,7 +589,7 @@ static int worker_fails(const char *why, char *msg, size_t msgsize)
  * is handed out), so the worker is through when none is open. */
 static int run_worker(const cli_mpi_job *job, char *msg, size_t msgsize)
 {
-    worker w = {.ncols = job->ncols};
+    worker w = {.job = job};
     long *members = NULL;
     int outcome = CLI_MPI_DONE, open = 0;
     worker_request_reset(&w, job);

@@ -34,11 +34,17 @@
 
 #define CLI_MPI_PLUGIN "hamlie-mpi.so"
 #define CLI_MPI_ENTRY "hamlie_mpi_plugin" /* const cli_mpi_api *hamlie_mpi_plugin(void) */
-#define CLI_MPI_VERSION 1
+#define CLI_MPI_VERSION 2
 
 /* What the protocol needs of the sweep; the callbacks' arg is job.arg. */
 typedef struct cli_mpi_job {
     int ncols;   /* doubles in a row */
+    /* the arrays of a result (sweep.h, "Arrays"): bit k set when kind k
+     * travels; width doubles a row; about how many bytes of them a member
+     * gives (for chunk sizes; 0: unknown or none) */
+    unsigned arrays;
+    int width;
+    long member_bytes;
     long group;  /* members per group (>= 1): chunks hold whole groups */
     int threads; /* this rank's compute threads (chunk sizes) */
     uint64_t fingerprint;
@@ -87,6 +93,16 @@ typedef const cli_mpi_api *(*cli_mpi_entry_fn)(void);
 /* Whether this process runs under an MPI launcher (OMPI_COMM_WORLD_SIZE,
  * PMIX_RANK or PMI_SIZE in the environment). */
 int cli_mpi_launched(void);
+
+/* This process's rank from the launcher's environment (0 outside one). */
+int cli_mpi_env_rank(void);
+/* Every rank reads the same command line, so a usage or input error would
+ * be said once per rank: on ranks but 0 of a launched job, standard error
+ * goes to /dev/null until cli_mpi_quiet_end (the exit status is the same
+ * on every rank; rank 0 says why).  Returns what quiet_end restores (-1:
+ * nothing was silenced). */
+int cli_mpi_quiet_begin(void);
+void cli_mpi_quiet_end(int saved);
 
 /* Threads per rank when the user gave none: the cores divided among the
  * ranks of this node (OMPI_COMM_WORLD_LOCAL_SIZE), at least 1. */

@@ -13,11 +13,13 @@
  * output, --resume), so the file is the same bit for bit. */
 #define _GNU_SOURCE /* dladdr: where this module lies */
 #include <dlfcn.h>
+#include <fcntl.h>
 #include <limits.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cli/cli.h"
 #include "cli/mpi_plugin.h"
@@ -34,6 +36,39 @@ int cli_mpi_launched(void)
 {
     return getenv("OMPI_COMM_WORLD_SIZE") != NULL || getenv("PMIX_RANK") != NULL ||
            getenv("PMI_SIZE") != NULL;
+}
+
+int cli_mpi_env_rank(void)
+{
+    const char *names[] = {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        const char *v = getenv(names[i]);
+        if (v != NULL && v[0] != '\0')
+            return atoi(v);
+    }
+    return 0;
+}
+
+int cli_mpi_quiet_begin(void)
+{
+    if (!cli_mpi_launched() || cli_mpi_env_rank() == 0)
+        return -1;
+    fflush(stderr);
+    int saved = dup(STDERR_FILENO), null = open("/dev/null", O_WRONLY);
+    if (saved >= 0 && null >= 0)
+        dup2(null, STDERR_FILENO);
+    if (null >= 0)
+        close(null);
+    return saved;
+}
+
+void cli_mpi_quiet_end(int saved)
+{
+    if (saved < 0)
+        return;
+    fflush(stderr);
+    dup2(saved, STDERR_FILENO);
+    close(saved);
 }
 
 int cli_mpi_default_threads(int cores)
@@ -127,7 +162,14 @@ static int compute(void *arg, const long *members, long n, hl_sweep_fn emit, voi
 
 static cli_mpi_job job_of(serve_ctx *c)
 {
+    unsigned arrays = 0;
+    for (int k = 0; k < HL_SWEEP_NARRAYS; k++)
+        arrays |= (unsigned)(hl_sweep_has_array(c->sw, k) != 0) << k;
+    long traj_bytes = hl_sweep_traj_rows_max(c->sw) * hl_sweep_array_width(c->sw) * 8;
     cli_mpi_job job = {.ncols = hl_sweep_ncols(c->sw),
+                       .arrays = arrays,
+                       .width = hl_sweep_array_width(c->sw),
+                       .member_bytes = traj_bytes,
                        .group = group_size(c->sw),
                        .threads = mpi.threads,
                        .fingerprint = hl_sweep_fingerprint(c->sw),

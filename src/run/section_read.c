@@ -1,11 +1,13 @@
 /* Reading the points of a section from CSV text (see hamlie/section.h:
- * hl_section_read_points). */
+ * hl_section_read_points), with the tokenizer the sweep's reader uses too
+ * (base/csv.h). */
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "base/buf.h"
+#include "base/csv.h"
 #include "hamlie/section.h"
 
 typedef struct reader {
@@ -24,35 +26,16 @@ static const char *var_name(hl_system *sys, int i)
     return i < N ? hl_system_coord(sys, i) : hl_system_momentum(sys, i - N);
 }
 
-static int is_blank(char c)
-{
-    return c == ' ' || c == '\t' || c == '\r';
-}
-
-/* [a, b) trimmed */
-static void trim(const char *t, int *a, int *b)
-{
-    while (*a < *b && is_blank(t[*a]))
-        ++*a;
-    while (*b > *a && is_blank(t[*b - 1]))
-        --*b;
-}
-
 /* The header line [a, b): the columns' variables. */
 static int read_header(reader *r, int a, int b)
 {
     char *seen = hl_xcalloc((size_t)(2 * r->N), 1);
-    int st = HL_OK;
-    for (int f = a; st == HL_OK && f <= b;) {
-        int e = f;
-        while (e < b && r->text[e] != ',')
-            e++;
-        int fa = f, fb = e, var = -1;
-        trim(r->text, &fa, &fb);
-        for (int i = 0; i < 2 * r->N; i++)
-            if ((int)strlen(var_name(r->sys, i)) == fb - fa &&
-                strncmp(var_name(r->sys, i), r->text + fa, (size_t)(fb - fa)) == 0)
-                var = i;
+    const char **names = hl_xcalloc((size_t)(2 * r->N), sizeof *names);
+    for (int i = 0; i < 2 * r->N; i++)
+        names[i] = var_name(r->sys, i);
+    int st = HL_OK, fa, fb;
+    for (int f = a; st == HL_OK && hl_csv_field(r->text, b, &f, &fa, &fb);) {
+        int var = hl_csv_name(r->text, fa, fb, names, 2 * r->N);
         if (var < 0)
             st = hl_error_set(r->err, HL_EINVAL, r->text, fa, fb > fa ? fb - fa : 1,
                               "'%.*s' is not a variable of the system", fb - fa, r->text + fa);
@@ -68,8 +51,8 @@ static int read_header(reader *r, int a, int b)
         seen[var] = 1;
         r->col = hl_xrealloc(r->col, (size_t)(r->ncol + 1) * sizeof *r->col);
         r->col[r->ncol++] = var;
-        f = e + 1;
     }
+    free(names);
     for (int i = 0; st == HL_OK && i < 2 * r->N; i++)
         if (!seen[i] && i != r->solved && i != r->j)
             st = hl_error_set(r->err, HL_EINVAL, r->text, a, b > a ? b - a : 1,
@@ -84,16 +67,11 @@ static int read_point(reader *r, int a, int b, double *z)
 {
     memset(z, 0, (size_t)(2 * r->N) * sizeof *z);
     z[r->j] = hl_section_value(r->s);
-    int k = 0, f = a;
-    for (; f <= b && k <= r->ncol; k++) {
-        int e = f;
-        while (e < b && r->text[e] != ',')
-            e++;
+    int k = 0, fa, fb;
+    for (int f = a; k <= r->ncol && hl_csv_field(r->text, b, &f, &fa, &fb); k++) {
         if (k == r->ncol)
-            return hl_error_set(r->err, HL_EINVAL, r->text, f, e > f ? e - f : 1,
+            return hl_error_set(r->err, HL_EINVAL, r->text, fa, fb > fa ? fb - fa : 1,
                                 "%d values expected, more given", r->ncol);
-        int fa = f, fb = e;
-        trim(r->text, &fa, &fb);
         char buf[64];
         int len = fb - fa < 63 ? fb - fa : 63;
         memcpy(buf, r->text + fa, (size_t)len);
@@ -109,7 +87,6 @@ static int read_point(reader *r, int a, int b, double *z)
                                 "the point is not on the section: %s = %.17g, not %.17g",
                                 var_name(r->sys, r->j), v, z[r->j]);
         z[r->col[k]] = v;
-        f = e + 1;
     }
     if (k < r->ncol)
         return hl_error_set(r->err, HL_EINVAL, r->text, b, 1, "%d values expected, %d given",
@@ -126,31 +103,25 @@ hl_status hl_section_read_points(hl_section *s, const char *text, double **zs, i
     r.sys = hl_section_system(s);
     r.N = hl_system_ndof(r.sys);
     r.solved = hl_section_momentum(s);
-    int st = HL_OK, header = 0, len = (int)strlen(text), line = 1;
+    int st = HL_OK, header = 0, len = (int)strlen(text), ta, tb;
     double *pts = NULL;
-    for (int a = 0; st == HL_OK && a < len; line++) {
-        int b = a;
-        while (b < len && text[b] != '\n')
-            b++;
-        int ta = a, tb = b;
-        trim(text, &ta, &tb);
-        if (ta < tb && text[ta] != '#') {
-            if (!header) {
-                st = read_header(&r, ta, tb);
-                header = 1;
-            } else if (*n >= HL_SECTION_MAX_POINTS) {
-                st = hl_error_set(err, HL_ELIMIT, text, ta, 1, "more than %d points",
-                                  HL_SECTION_MAX_POINTS);
-            } else {
-                pts = hl_xrealloc(pts, (size_t)(*n + 1) * (size_t)(2 * r.N) * sizeof *pts);
-                double *z = pts + (size_t)*n * (size_t)(2 * r.N);
-                st = read_point(&r, ta, tb, z);
-                if (st == HL_OK && (st = hl_section_complete(s, z, err)) != HL_OK)
-                    hl_error_prefix(err, "the point on line %d", line);
-                (*n)++;
-            }
+    hl_csv c;
+    hl_csv_init(&c, text);
+    while (st == HL_OK && hl_csv_line(&c, &ta, &tb)) {
+        if (!header) {
+            st = read_header(&r, ta, tb);
+            header = 1;
+        } else if (*n >= HL_SECTION_MAX_POINTS) {
+            st = hl_error_set(err, HL_ELIMIT, text, ta, 1, "more than %d points",
+                              HL_SECTION_MAX_POINTS);
+        } else {
+            pts = hl_xrealloc(pts, (size_t)(*n + 1) * (size_t)(2 * r.N) * sizeof *pts);
+            double *z = pts + (size_t)*n * (size_t)(2 * r.N);
+            st = read_point(&r, ta, tb, z);
+            if (st == HL_OK && (st = hl_section_complete(s, z, err)) != HL_OK)
+                hl_error_prefix(err, "the point on line %d", c.line);
+            (*n)++;
         }
-        a = b + 1;
     }
     if (st == HL_OK && *n == 0)
         st = hl_error_set(err, HL_EINVAL, text, len, 1,

@@ -1,25 +1,13 @@
 /* The members' points from CSV text: a header naming every variable once,
- * then one point a line ('#' lines and blank lines skipped).  Mirrors the
- * section's reader (src/run/section_read.c), which is tied to a section's
- * seeding; errors point at the field in the text. */
+ * then one point a line ('#' lines and blank lines skipped), read with the
+ * tokenizer the section's reader uses too (base/csv.h); errors point at
+ * the field in the text. */
 #include <stdlib.h>
 #include <string.h>
 
 #include "base/buf.h"
+#include "base/csv.h"
 #include "sweep/sweep_impl.h"
-
-static int is_blank(char c)
-{
-    return c == ' ' || c == '\t' || c == '\r';
-}
-
-static void trim(const char *t, int *a, int *b)
-{
-    while (*a < *b && is_blank(t[*a]))
-        ++*a;
-    while (*b > *a && is_blank(t[*b - 1]))
-        --*b;
-}
 
 typedef struct csv_reader {
     hl_sweep *sw;
@@ -30,19 +18,11 @@ typedef struct csv_reader {
 
 static hl_status read_header(csv_reader *r, int a, int b)
 {
-    int n2 = 2 * r->sw->N, ncol = 0, st = HL_OK;
+    int n2 = 2 * r->sw->N, ncol = 0, st = HL_OK, fa, fb;
     char *seen = hl_xcalloc((size_t)n2, 1);
     r->col = hl_xcalloc((size_t)n2, sizeof *r->col);
-    for (int f = a; st == HL_OK && f <= b;) {
-        int e = f;
-        while (e < b && r->text[e] != ',')
-            e++;
-        int fa = f, fb = e, var = -1;
-        trim(r->text, &fa, &fb);
-        for (int i = 0; i < n2; i++)
-            if ((int)strlen(r->sw->var[i]) == fb - fa &&
-                strncmp(r->sw->var[i], r->text + fa, (size_t)(fb - fa)) == 0)
-                var = i;
+    for (int f = a; st == HL_OK && hl_csv_field(r->text, b, &f, &fa, &fb);) {
+        int var = hl_csv_name(r->text, fa, fb, (const char *const *)r->sw->var, n2);
         if (var < 0)
             st = hl_error_set(r->err, HL_EINVAL, r->text, fa, fb > fa ? fb - fa : 1,
                               "'%.*s' is not a variable of the system", fb - fa, r->text + fa);
@@ -53,7 +33,6 @@ static hl_status read_header(csv_reader *r, int a, int b)
             seen[var] = 1;
             r->col[ncol++] = var;
         }
-        f = e + 1;
     }
     for (int i = 0; st == HL_OK && i < n2; i++)
         if (!seen[i])
@@ -66,20 +45,14 @@ static hl_status read_header(csv_reader *r, int a, int b)
 
 static hl_status read_point(csv_reader *r, int a, int b, double *z)
 {
-    int n2 = 2 * r->sw->N, k = 0, f = a;
-    for (; f <= b; k++) {
-        int e = f;
-        while (e < b && r->text[e] != ',')
-            e++;
+    int n2 = 2 * r->sw->N, k = 0, fa, fb;
+    for (int f = a; hl_csv_field(r->text, b, &f, &fa, &fb); k++) {
         if (k == n2)
-            return hl_error_set(r->err, HL_EINVAL, r->text, f, e > f ? e - f : 1,
+            return hl_error_set(r->err, HL_EINVAL, r->text, fa, fb > fa ? fb - fa : 1,
                                 "%d values expected, more given", n2);
-        int fa = f, fb = e;
-        trim(r->text, &fa, &fb);
         int st = sweep_number(&z[r->col[k]], r->text, fa, fb - fa, r->sw->var[r->col[k]], r->err);
         if (st != HL_OK)
             return st;
-        f = e + 1;
     }
     if (k < n2)
         return hl_error_set(r->err, HL_EINVAL, r->text, b > a ? b - 1 : a, 1,
@@ -90,32 +63,26 @@ static hl_status read_point(csv_reader *r, int a, int b, double *z)
 hl_status sweep_read_csv(hl_sweep *sw, const char *text, hl_error *err)
 {
     csv_reader r = {sw, text, NULL, err};
-    int st = HL_OK, header = 0, len = (int)strlen(text), n2 = 2 * sw->N;
+    int st = HL_OK, header = 0, len = (int)strlen(text), n2 = 2 * sw->N, ta, tb;
     long n = 0, cap = 0;
-    for (int a = 0; st == HL_OK && a < len;) {
-        int b = a;
-        while (b < len && text[b] != '\n')
-            b++;
-        int ta = a, tb = b;
-        trim(text, &ta, &tb);
-        if (ta < tb && text[ta] != '#') {
-            if (!header) {
-                st = read_header(&r, ta, tb);
-                header = 1;
-            } else if (n >= HL_SWEEP_MAX_MEMBERS) {
-                st = hl_error_set(err, HL_ELIMIT, text, ta, 1, "more than %ld points",
-                                  HL_SWEEP_MAX_MEMBERS);
-            } else {
-                if (n == cap) {
-                    cap = cap ? 2 * cap : 64;
-                    sw->csv_points =
-                        hl_xrealloc(sw->csv_points, (size_t)cap * (size_t)n2 * sizeof(double));
-                }
-                st = read_point(&r, ta, tb, sw->csv_points + (size_t)n * (size_t)n2);
-                n++;
+    hl_csv c;
+    hl_csv_init(&c, text);
+    while (st == HL_OK && hl_csv_line(&c, &ta, &tb)) {
+        if (!header) {
+            st = read_header(&r, ta, tb);
+            header = 1;
+        } else if (n >= HL_SWEEP_MAX_MEMBERS) {
+            st = hl_error_set(err, HL_ELIMIT, text, ta, 1, "more than %ld points",
+                              HL_SWEEP_MAX_MEMBERS);
+        } else {
+            if (n == cap) {
+                cap = cap ? 2 * cap : 64;
+                sw->csv_points =
+                    hl_xrealloc(sw->csv_points, (size_t)cap * (size_t)n2 * sizeof(double));
             }
+            st = read_point(&r, ta, tb, sw->csv_points + (size_t)n * (size_t)n2);
+            n++;
         }
-        a = b + 1;
     }
     free(r.col);
     if (st == HL_OK && n == 0)

@@ -1,10 +1,14 @@
 /* The journal of a sweep (sweep.h): every result appended as it completes
  * and flushed, so an interrupted sweep resumes from what was done.
  *
- *   header:  "HLSWJRN1", fingerprint u64, ncols u32, 0 u32
+ *   header:  "HLSWJRN1", fingerprint u64, ncols u32, arrays u32
  *   record:  member i64, status i32, reason length u32, ncols doubles,
- *            the reason's bytes, FNV-1a of all the above u64
+ *            the reason's bytes, then for each kind of array the sweep
+ *            gives (bit k of arrays: sweep.h's HL_SWEEP_TRAJ, _CROSS) its
+ *            rows i64 and rows * width doubles, FNV-1a of all the above u64
  *
+ * The arrays travel in the journal, so --resume gives them without running
+ * a member again (a trajectory may have cost minutes).
  * In the machine's byte order: a journal is for resuming on the machine
  * that wrote it.  A record whose checksum does not match, or that is cut
  * short (the process killed mid-write), ends the journal: it and anything
@@ -25,10 +29,19 @@
 struct hl_sweep_journal {
     FILE *fp;
     char *path;
+    const hl_sweep *sw;
     int ncols;
     hl_buf rec; /* one record being built */
     int failed; /* a write failed: the sweep is told to stop */
 };
+
+static uint32_t array_bits(const hl_sweep *sw)
+{
+    uint32_t bits = 0;
+    for (int k = 0; k < HL_SWEEP_NARRAYS; k++)
+        bits |= (uint32_t)(sw->has_array[k] != 0) << k;
+    return bits;
+}
 
 static uint64_t fnv(const unsigned char *p, size_t n)
 {
@@ -40,18 +53,57 @@ static uint64_t fnv(const unsigned char *p, size_t n)
 
 static void header(unsigned char *h, const hl_sweep *sw)
 {
-    uint32_t ncols = (uint32_t)sw->ncols, zero = 0;
+    uint32_t ncols = (uint32_t)sw->ncols, arrays = array_bits(sw);
     memcpy(h, MAGIC, 8);
     memcpy(h + 8, &sw->fingerprint, 8);
     memcpy(h + 16, &ncols, 4);
-    memcpy(h + 20, &zero, 4);
+    memcpy(h + 20, &arrays, 4);
+}
+
+/* Where a record's arrays are read into (aligned: the journal's bytes are
+ * not), grown as needed. */
+typedef struct scratch {
+    double *row;
+    double *v[HL_SWEEP_NARRAYS];
+    size_t cap[HL_SWEEP_NARRAYS]; /* doubles */
+} scratch;
+
+/* The arrays of a record from p + at (the record's first avail bytes);
+ * the new offset, or 0 when the record is torn. */
+static size_t parse_arrays(const hl_sweep *sw, const unsigned char *p, size_t at, size_t avail,
+                           hl_sweep_result *r, scratch *sc)
+{
+    size_t width = (size_t)hl_sweep_array_width(sw);
+    for (int k = 0; k < HL_SWEEP_NARRAYS; k++) {
+        r->nrows[k] = 0;
+        r->array[k] = NULL;
+        if (!sw->has_array[k])
+            continue;
+        int64_t rows;
+        if (avail < at + 8)
+            return 0;
+        memcpy(&rows, p + at, 8);
+        at += 8;
+        if (rows < 0 || (uint64_t)rows > (avail - at) / (8 * width))
+            return 0;
+        size_t n = (size_t)rows * width;
+        if (n > sc->cap[k]) {
+            sc->v[k] = hl_xrealloc(sc->v[k], n * sizeof(double));
+            sc->cap[k] = n;
+        }
+        memcpy(sc->v[k], p + at, 8 * n);
+        at += 8 * n;
+        r->nrows[k] = (long)rows;
+        r->array[k] = sc->v[k];
+    }
+    return at;
 }
 
 /* One record at p (avail bytes) into r; its length, or 0 when it is torn. */
-static size_t parse_record(const unsigned char *p, size_t avail, int ncols, hl_sweep_result *r,
-                           double *row)
+static size_t parse_record(const hl_sweep *sw, const unsigned char *p, size_t avail,
+                           hl_sweep_result *r, scratch *sc)
 {
-    size_t fixed = 8 + 4 + 4 + 8 * (size_t)ncols;
+    size_t ncols = (size_t)sw->ncols, fixed = 8 + 4 + 4 + 8 * ncols;
     if (avail < fixed + 8)
         return 0;
     int64_t member;
@@ -62,17 +114,20 @@ static size_t parse_record(const unsigned char *p, size_t avail, int ncols, hl_s
     memcpy(&rlen, p + 12, 4);
     if (rlen >= HL_SWEEP_REASON || avail < fixed + rlen + 8)
         return 0;
-    uint64_t sum;
-    memcpy(&sum, p + fixed + rlen, 8);
-    if (sum != fnv(p, fixed + rlen))
+    size_t end = parse_arrays(sw, p, fixed + rlen, avail - 8, r, sc);
+    if (end == 0)
         return 0;
-    memcpy(row, p + 16, 8 * (size_t)ncols);
+    uint64_t sum;
+    memcpy(&sum, p + end, 8);
+    if (sum != fnv(p, end))
+        return 0;
+    memcpy(sc->row, p + 16, 8 * ncols);
     r->member = (long)member;
     r->status = (hl_status)status;
     memcpy(r->reason, p + fixed, rlen);
     r->reason[rlen] = '\0';
-    r->row = row;
-    return fixed + rlen + 8;
+    r->row = sc->row;
+    return end + 8;
 }
 
 static hl_status read_file(unsigned char **data, size_t *n, const char *path, hl_error *err)
@@ -111,15 +166,19 @@ static hl_status load(const hl_sweep *sw, const char *path, const unsigned char 
                             "the journal '%s' is another sweep's (its fingerprint differs): "
                             "remove it to start afresh",
                             path);
-    double *row = hl_xcalloc((size_t)sw->ncols, sizeof *row);
+    scratch sc;
+    memset(&sc, 0, sizeof sc);
+    sc.row = hl_xcalloc((size_t)sw->ncols, sizeof *sc.row);
     hl_sweep_result r;
     size_t at = HEADER_BYTES, k;
-    while ((k = parse_record(data + at, n - at, sw->ncols, &r, row)) > 0) {
+    while ((k = parse_record(sw, data + at, n - at, &r, &sc)) > 0) {
         if (r.member >= 0 && r.member < sw->count)
             hl_sweep_table_store(&r, tab);
         at += k;
     }
-    free(row);
+    free(sc.row);
+    for (int i = 0; i < HL_SWEEP_NARRAYS; i++)
+        free(sc.v[i]);
     *good = at;
     return HL_OK;
 }
@@ -161,6 +220,7 @@ hl_status hl_sweep_journal_open(hl_sweep_journal **out, const hl_sweep *sw, cons
     hl_sweep_journal *j = hl_xcalloc(1, sizeof *j);
     j->fp = fp;
     j->path = jpath;
+    j->sw = sw;
     j->ncols = sw->ncols;
     hl_buf_init(&j->rec);
     *out = j;
@@ -180,6 +240,14 @@ int hl_sweep_journal_append(const hl_sweep_result *r, void *arg)
     hl_buf_putn(b, (const char *)&rlen, 4);
     hl_buf_putn(b, (const char *)r->row, 8 * (size_t)j->ncols);
     hl_buf_putn(b, r->reason, rlen);
+    size_t width = (size_t)hl_sweep_array_width(j->sw);
+    for (int k = 0; k < HL_SWEEP_NARRAYS; k++)
+        if (j->sw->has_array[k]) {
+            int64_t rows = r->array[k] != NULL ? r->nrows[k] : 0;
+            hl_buf_putn(b, (const char *)&rows, 8);
+            if (rows > 0)
+                hl_buf_putn(b, (const char *)r->array[k], 8 * (size_t)rows * width);
+        }
     uint64_t sum = fnv((const unsigned char *)b->s, b->len);
     hl_buf_putn(b, (const char *)&sum, 8);
     if (fwrite(b->s, 1, b->len, j->fp) != b->len || fflush(j->fp) != 0)

@@ -51,6 +51,7 @@ struct sweep_worker {
     char chaos_reason[HL_SWEEP_REASON];
     int lanes_mode; /* SWEEP_LANES_* */
     ready_rows ready;
+    sweep_arrays arrays; /* the last member's trajectory and crossings */
 };
 
 sweep_worker *sweep_worker_new(const hl_sweep *sw)
@@ -60,7 +61,10 @@ sweep_worker *sweep_worker_new(const hl_sweep *sw)
     w->ctx = hl_xcalloc((size_t)sw->nparamsets, sizeof *w->ctx);
     w->z0 = hl_xcalloc((size_t)(2 * sw->N), sizeof *w->z0);
     w->chaos_point = -1;
-    w->lanes_mode = sweep_has_lie(sw) ? sweep_lanes_mode() : SWEEP_LANES_OFF;
+    /* the lanes give final rows only: a member's arrays need its own run */
+    int arrays = sw->spec.save_every > 0 || sw->spec.event != NULL;
+    w->lanes_mode = sweep_has_lie(sw) && !arrays ? sweep_lanes_mode() : SWEEP_LANES_OFF;
+    sweep_arrays_init(&w->arrays, sw);
     return w;
 }
 
@@ -89,6 +93,7 @@ void sweep_worker_free(sweep_worker *w)
     free(w->ctx);
     free(w->z0);
     free(w->ready.member), free(w->ready.row), free(w->ready.status), free(w->ready.reason);
+    sweep_arrays_clear(&w->arrays);
     free(w);
 }
 
@@ -104,7 +109,8 @@ static void set_reason(char *reason, const char *prefix, const hl_error *err)
     reason[k] = '\0';
 }
 
-static hl_status build_ctx(paramset_ctx *c, const hl_sweep *sw, long paramset, hl_error *err)
+static hl_status build_ctx(paramset_ctx *c, const hl_sweep *sw, long paramset, sweep_arrays *arrays,
+                           hl_error *err)
 {
     int st = sweep_system(&c->sys, sw, paramset, err);
     c->sch = hl_xcalloc((size_t)sw->nschemes, sizeof *c->sch);
@@ -118,6 +124,8 @@ static hl_status build_ctx(paramset_ctx *c, const hl_sweep *sw, long paramset, h
             st = hl_run_new(&c->run[i], c->sys, c->sch[i], err);
         if (st == HL_OK)
             hl_run_set_jit(c->run[i], 1); /* as `hamlie run`: the same bits, faster long runs */
+        if (st == HL_OK)
+            st = sweep_arrays_attach(arrays, c->run[i], err);
     }
     if (st == HL_OK && sw->spec.chaos)
         st = hl_chaos_new(&c->chaos, c->sys, sw->spec.tol, err);
@@ -142,7 +150,7 @@ static paramset_ctx *get_ctx(sweep_worker *w, long paramset)
         hl_error err;
         hl_error_clear(&err);
         c->built = 1;
-        c->status = build_ctx(c, w->sw, paramset, &err);
+        c->status = build_ctx(c, w->sw, paramset, &w->arrays, &err);
         if (c->status != HL_OK)
             set_reason(c->reason, "", &err);
     }
@@ -229,9 +237,14 @@ static hl_status run_member(sweep_worker *w, paramset_ctx *c, sweep_where at, do
     hl_run_stats s;
     memset(&s, 0, sizeof s);
     int st = hl_run_check_start(run, w->z0, err);
+    long every = sweep_arrays_every(sw);
+    hl_run_fn keep = sweep_arrays_row_fn(sw); /* the trajectory, when asked */
     if (st == HL_OK) {
-        st = adaptive ? hl_run_adaptive(run, w->z0, sw->spec.tol, dt, t, 1, NULL, NULL, &s, err)
-                      : hl_run_fixed(run, w->z0, dt, t, 1, NULL, NULL, &s, err);
+        sweep_arrays_begin(&w->arrays);
+        st = adaptive ? hl_run_adaptive(run, w->z0, sw->spec.tol, dt, t, every, keep, &w->arrays,
+                                        &s, err)
+                      : hl_run_fixed(run, w->z0, dt, t, every, keep, &w->arrays, &s, err);
+        sweep_arrays_end(&w->arrays);
         fill_stats(sw, &s, hl_run_state(run), row);
     }
     if (!sw->spec.reference || adaptive) /* measured only for the order: not shown */
@@ -378,9 +391,16 @@ void sweep_worker_prepare(sweep_worker *w, const long *list, long n)
     free(order), free(start), free(ms);
 }
 
+void sweep_member_arrays(const sweep_worker *w, hl_sweep_result *r)
+{
+    sweep_arrays_result(&w->arrays, r);
+}
+
 void sweep_member(sweep_worker *w, long m, double *row, hl_status *status, char *reason)
 {
     const hl_sweep *sw = w->sw;
+    sweep_arrays_begin(&w->arrays); /* none for a member that does not run */
+    sweep_arrays_end(&w->arrays);
     sweep_where at = sweep_locate(sw, m);
     sweep_point(sw, at.point, w->z0);
     fill_inputs(sw, m, at, w->z0, row);

@@ -113,6 +113,7 @@ static void *work(void *arg)
         for (long i = p->unit[u]; i < p->unit[u + 1] && !atomic_load(&p->stop); i++) {
             r.member = member_at(p, i);
             sweep_member(w, r.member, row, &r.status, r.reason);
+            sweep_member_arrays(w, &r);
             deliver(p, &r);
         }
     }

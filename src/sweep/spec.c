@@ -30,6 +30,7 @@ static void copy_spec(hl_sweep *sw, const hl_sweep_spec *spec)
     sw->spec.random = dup_or_null(spec->random);
     sw->spec.schemes = dup_or_null(spec->schemes);
     sw->spec.dts = dup_or_null(spec->dts);
+    sw->spec.event = dup_or_null(spec->event);
     if (!(sw->spec.tol > 0))
         sw->spec.tol = 1e-15;
 }
@@ -255,7 +256,13 @@ static uint64_t fingerprint(const hl_sweep *sw)
     h = fnv(h, &s->t, sizeof s->t);
     h = fnv(h, &s->tol, sizeof s->tol);
     int flags[3] = {s->reference != 0, s->order != 0, s->chaos != 0};
-    return fnv(h, flags, sizeof flags);
+    h = fnv(h, flags, sizeof flags);
+    if (s->save_every > 0 || s->event != NULL) { /* a sweep without arrays keeps its print */
+        h = fnv(h, &s->save_every, sizeof s->save_every);
+        h = fnv_str(h, s->event);
+        h = fnv(h, &s->direction, sizeof s->direction);
+    }
+    return h;
 }
 
 /* ---- the sweep ------------------------------------------------------------ */
@@ -322,6 +329,8 @@ static hl_status read_all(hl_sweep *sw, hl_error *err)
         st = read_schemes(sw, sys, err);
     if (st == HL_OK)
         st = read_dts(sw, err);
+    if (st == HL_OK)
+        st = sweep_check_event(sw, sys, err);
     if (st == HL_OK && sw->spec.chaos) { /* a symbolic parameter left: said now, not per member */
         hl_chaos *c = NULL;
         st = hl_chaos_new(&c, sys, sw->spec.tol, err);
@@ -350,9 +359,10 @@ static void point_at_callers_text(hl_error *err, const hl_sweep *sw, const hl_sw
         return;
     const char *const mine[] = {sw->spec.H,       sw->spec.pairs,      sw->spec.params,
                                 sw->spec.grid,    sw->spec.points_csv, sw->spec.random,
-                                sw->spec.schemes, sw->spec.dts};
-    const char *const theirs[] = {spec->H,          spec->pairs,  spec->params,  spec->grid,
-                                  spec->points_csv, spec->random, spec->schemes, spec->dts};
+                                sw->spec.schemes, sw->spec.dts,        sw->spec.event};
+    const char *const theirs[] = {spec->H,       spec->pairs,      spec->params,
+                                  spec->grid,    spec->points_csv, spec->random,
+                                  spec->schemes, spec->dts,        spec->event};
     int found = 0;
     for (size_t i = 0; i < sizeof mine / sizeof mine[0]; i++)
         if (mine[i] != NULL && err->src == mine[i]) {
@@ -383,6 +393,8 @@ hl_status hl_sweep_new(hl_sweep **out, const hl_sweep_spec *spec, hl_error *err)
         return st;
     }
     name_columns(sw);
+    sw->has_array[HL_SWEEP_TRAJ] = sw->spec.save_every > 0;
+    sw->has_array[HL_SWEEP_CROSS] = sw->spec.event != NULL;
     sw->fingerprint = fingerprint(sw);
     *out = sw;
     return HL_OK;
@@ -394,7 +406,8 @@ void hl_sweep_free(hl_sweep *sw)
         return;
     const char *texts[] = {sw->spec.H,      sw->spec.pairs,      sw->spec.params,
                            sw->spec.grid,   sw->spec.points_csv, sw->spec.points_csv_name,
-                           sw->spec.random, sw->spec.schemes,    sw->spec.dts};
+                           sw->spec.random, sw->spec.schemes,    sw->spec.dts,
+                           sw->spec.event};
     for (size_t i = 0; i < sizeof texts / sizeof texts[0]; i++)
         free((char *)texts[i]);
     for (int i = 0; sw->var != NULL && i < 2 * sw->N; i++)

@@ -7,6 +7,11 @@
  *                       others float64, NaN where the CSV has NaN
  *   /summary/status     int64: 0, or the member's hl_status
  *   /summary/reason     strings: "" or why the member failed
+ *   /trajectories, /crossings   (when the sweep gives them) "data": a
+ *                       rows x (2 + 2N) float64 matrix, one row a sample:
+ *                       member, t, the state (its "columns" attribute
+ *                       names them); "offsets": int64, members + 1 values,
+ *                       member m's rows being data[offsets[m]:offsets[m+1]]
  *   /  attributes       the spec's texts and numbers, the scheme names, the
  *                       column names, the status names, hamlie's version,
  *                       the fingerprint */
@@ -119,6 +124,55 @@ static void put_names(hl_h5 *f, const hl_sweep *sw, hl_error *err)
     hl_h5_attr_strings(f, NULL, "status_names", status, HL_ESTOP + 1, err);
 }
 
+/* One kind of array as a ragged table: data (member, t, state) in member
+ * order and the offsets of each member's rows. */
+static void put_array(hl_h5 *f, const hl_sweep *sw, const hl_sweep_table *tab, int kind,
+                      hl_error *err)
+{
+    const char *group = kind == HL_SWEEP_TRAJ ? "trajectories" : "crossings";
+    long n = hl_sweep_count(sw), total = 0, rows;
+    int width = hl_sweep_array_width(sw), cols = width + 1;
+    int64_t *offsets = hl_xmalloc((size_t)(n + 1) * sizeof *offsets);
+    for (long m = 0; m < n; m++) {
+        offsets[m] = total;
+        hl_sweep_table_array(tab, m, kind, &rows);
+        total += rows;
+    }
+    offsets[n] = total;
+    double *data = hl_xmalloc((size_t)(total > 0 ? total : 1) * (size_t)cols * sizeof *data);
+    for (long m = 0; m < n; m++) {
+        const double *v = hl_sweep_table_array(tab, m, kind, &rows);
+        for (long i = 0; i < rows; i++) {
+            double *out = data + (size_t)(offsets[m] + i) * (size_t)cols;
+            out[0] = (double)m;
+            memcpy(out + 1, v + (size_t)i * (size_t)width, (size_t)width * sizeof *v);
+        }
+    }
+    char name[64];
+    snprintf(name, sizeof name, "%s/data", group);
+    hl_h5_group(f, group, err);
+    hl_h5_matrix(f, name, data, total, cols, err);
+    free(data);
+    const char **names = hl_xmalloc((size_t)cols * sizeof *names);
+    names[0] = "member";
+    names[1] = "t";
+    for (int i = 0; i < 2 * sw->N; i++)
+        names[2 + i] = hl_sweep_column(sw, sw->c_z + i); /* the variables' names */
+    hl_h5_attr_strings(f, name, "columns", names, cols, err);
+    free(names);
+    snprintf(name, sizeof name, "%s/offsets", group);
+    hl_h5_int64s(f, name, offsets, n + 1, err);
+    free(offsets);
+    const hl_sweep_spec *spec = hl_sweep_get_spec(sw);
+    if (kind == HL_SWEEP_TRAJ)
+        hl_h5_attr_long(f, group, "save_every", spec->save_every, err);
+    else {
+        static const char *const dir[] = {"down", "both", "up"};
+        hl_h5_attr_string(f, group, "event", spec->event, err);
+        hl_h5_attr_string(f, group, "direction", dir[spec->direction + 1], err);
+    }
+}
+
 hl_status hl_sweep_write_h5(const hl_sweep *sw, const hl_sweep_table *tab, const char *path,
                             hl_error *err)
 {
@@ -136,5 +190,8 @@ hl_status hl_sweep_write_h5(const hl_sweep *sw, const hl_sweep_table *tab, const
     put_spec(f, hl_sweep_get_spec(sw), err);
     put_names(f, sw, err);
     put_summary(f, sw, tab, err);
+    for (int k = 0; k < HL_SWEEP_NARRAYS; k++)
+        if (hl_sweep_has_array(sw, k))
+            put_array(f, sw, tab, k, err);
     return hl_h5_commit(f, err);
 }

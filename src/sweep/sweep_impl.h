@@ -53,6 +53,7 @@ struct hl_sweep {
     /* the column index of the first of each block (hl_sweep.h's order) */
     int c_param, c_z0, c_t, c_order, c_megno, c_z;
     uint64_t fingerprint;
+    int has_array[HL_SWEEP_NARRAYS]; /* spec.save_every > 0, spec.event != NULL */
 };
 
 /* Fixed column indices. */
@@ -131,6 +132,32 @@ long sweep_lane_groups(const hl_sweep *sw, const long *list, long n,
                        long *start);
 /* How many lie members a work unit should hold for the lanes. */
 long sweep_lanes_unit(const hl_sweep *sw, long lie_members, int threads);
+/* arrays.c: a thread's collector of one member's arrays (sweep.h,
+ * "Arrays"): the trajectory rows of its run's callback and the crossings
+ * of the run's event, while on (the runs for the order at dt/2 give none). */
+typedef struct sweep_arrays {
+    const hl_sweep *sw;
+    int on;
+    double *v[HL_SWEEP_NARRAYS];
+    long n[HL_SWEEP_NARRAYS], cap[HL_SWEEP_NARRAYS]; /* rows */
+} sweep_arrays;
+void sweep_arrays_init(sweep_arrays *a, const hl_sweep *sw);
+void sweep_arrays_clear(sweep_arrays *a);
+/* The event of spec.event on run (a no-op without one), its crossings to a. */
+hl_status sweep_arrays_attach(sweep_arrays *a, hl_run *run, hl_error *err);
+/* Collecting from an empty start / no more. */
+void sweep_arrays_begin(sweep_arrays *a);
+void sweep_arrays_end(sweep_arrays *a);
+/* What the run's driver takes for the trajectory: the callback (NULL
+ * without save_every; its arg is a) and the row spacing. */
+hl_run_fn sweep_arrays_row_fn(const hl_sweep *sw);
+long sweep_arrays_every(const hl_sweep *sw);
+/* r's arrays: a's (valid until the next begin). */
+void sweep_arrays_result(const sweep_arrays *a, hl_sweep_result *r);
+/* member.c: the arrays of the member w ran last, into r. */
+void sweep_member_arrays(const sweep_worker *w, hl_sweep_result *r);
+/* spec.c: checks the event's text on sys (errors point into it). */
+hl_status sweep_check_event(const hl_sweep *sw, hl_system *sys, hl_error *err);
 
 /* write.c / sweep_h5.c */
 hl_status sweep_write_csv(const hl_sweep *sw, const hl_sweep_table *tab, const char *path,

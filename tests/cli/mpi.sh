@@ -5,8 +5,9 @@
 # threads in the ranks; a member that fails travels as a row (status and
 # reason); mpirun interrupted mid-sweep (SIGINT: it passes SIGTERM on)
 # leaves the journal and no file, and --resume under mpirun finishes it to
-# the same file; bad cases say so once and exit 2: the plugin missing, a
-# journal left without --resume.  Skipped (77) without mpirun or without
+# the same file; the arrays (--save-every, --event) the same with 4 ranks
+# (CSV sidecars) and 2 (HDF5); bad cases say so once and exit 2: the
+# plugin missing, a journal left without --resume, a usage error.  Skipped (77) without mpirun or without
 # the plugin (hamlie built without MPI).
 # usage (from the repo root): bash tests/cli/mpi.sh path/to/hamlie
 set -u
@@ -65,6 +66,18 @@ if [ "$(wc -l <"$tmp/ref.csv")" -eq $((9 * 7 * 2 * 2 + 1)) ]; then ok; else
 run 0 "${PEND[@]}" --mpi --threads 1 --out "$tmp/single.csv"
 same "$tmp/single.csv" "$tmp/ref.csv"
 
+# ---- the arrays (--save-every, --event): the same sidecars -----------------
+ARR=(--save-every 50 --event 'q = 0' --direction up)
+run 0 "${PEND[@]}" "${ARR[@]}" --threads 1 --out "$tmp/arr.csv"
+mpi 0 4 "${PEND[@]}" "${ARR[@]}" --threads 1 --out "$tmp/arr4.csv"
+for f in arr4.csv arr4-traj.csv arr4-cross.csv; do same "$tmp/$f" "$tmp/arr${f#arr4}"; done
+if [ "$(wc -l <"$tmp/arr-cross.csv")" -gt 100 ]; then ok; else bad "few crossings in arr-cross.csv"; fi
+
+# ---- a usage error is said once, by rank 0, with every rank's status ------
+mpi 2 2 "${PEND[@]}" --save-every 0 --out "$tmp/usage.csv"
+if [ "$(grep -c "save-every" "$tmp/err")" -eq 1 ]; then ok; else
+    bad "want the usage error once"; sed 's/^/    /' "$tmp/err" >&2; fi
+
 # ---- failed members are rows, with their reasons --------------------------
 run 1 "${BLOW[@]}" --threads 1 --out "$tmp/blow-ref.csv"
 grep -q "failed" "$tmp/err" && ok || bad "the threaded run names no failed member"
@@ -119,6 +132,9 @@ if "$HAMLIE" "${PEND[@]}" --threads 2 --out "$tmp/ref.h5" 2>"$tmp/h5err"; then
         mpi 0 $np "${PEND[@]}" --threads 1 --out "$tmp/np$np.h5"
         same "$tmp/np$np.h5" "$tmp/ref.h5"
     done
+    run 0 "${PEND[@]}" "${ARR[@]}" --threads 2 --out "$tmp/arr.h5"
+    mpi 0 2 "${PEND[@]}" "${ARR[@]}" --threads 1 --out "$tmp/arr2.h5"
+    same "$tmp/arr2.h5" "$tmp/arr.h5"
     interrupted_resume h5
 else
     echo "note: no HDF5 sweep files here: $(head -1 "$tmp/h5err")"
