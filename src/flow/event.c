@@ -166,6 +166,11 @@ int hl_event_hermite(hl_event *ev, const double *z0, const double *f0, const dou
 /* The isolation bisects at most this deep: two crossings closer than
  * 2^-ISOLATE_DEPTH of a step are the only ones that can still be missed. */
 #define ISOLATE_DEPTH 40
+/* and looks at no more intervals than this in one step: where the count
+ * stays undecided (g within rounding of 0 over much of the step) the
+ * bisection would otherwise branch 2^ISOLATE_DEPTH ways; past the budget
+ * an interval is judged by its ends, as at the depth limit */
+#define ISOLATE_BUDGET 4096
 
 /* c[0..p] := the coefficients of P(l + w x) from those of P(x). */
 static void shift_scale(double *c, int p, double l, double w)
@@ -218,13 +223,19 @@ static void bernstein_weights(double *W, int p)
     }
 }
 
-/* The rounding noise of Q's values and Bernstein coefficients on [0, 1]. */
-static double noise_of(const double *c, int p)
+/* sum |c_k|: a bound of |g| over the interval the series spans */
+static double magnitude(const double *c, int p)
 {
     double mag = 0;
     for (int k = 0; k <= p; k++)
         mag += fabs(c[k]);
-    return 4 * (p + 1) * DBL_EPSILON * mag;
+    return mag;
+}
+
+/* The rounding noise of Q's values and Bernstein coefficients on [0, 1]. */
+static double noise_of(const double *c, int p)
+{
+    return 4 * (p + 1) * DBL_EPSILON * magnitude(c, p);
 }
 
 static int sign_of(double x)
@@ -255,6 +266,8 @@ typedef struct isolate {
     double h, *c; /* the step; p + 1 scratch */
     double *z;
     double noise; /* g's rounding noise: noise_of the whole step's series */
+    int budget;   /* intervals left to look at (ISOLATE_BUDGET) */
+    double found; /* the crossing just found, where the search resumes; -1: none */
 } isolate;
 
 /* The first crossing in (l, r] (in units of the step; gl, gr: g at l h and
@@ -269,15 +282,23 @@ static int isolate_first(isolate *s, double l, double r, double gl, double gr, i
      * right after it counts */
     for (int k = 1; gl == 0 && k <= s->p; k++)
         gl = s->c[k];
+    /* g within rounding of 0 over the whole interval (an orbit that lies
+     * in the surface, at an equilibrium on it): no sign to change */
+    if (magnitude(s->c, s->p) <= s->noise)
+        return 0;
     int v = bernstein_changes(s->c, s->p, s->W, sign_of(gl), sign_of(gr), noise_of(s->c, s->p));
     if (v == 0 && !hl_event_crosses(s->ev, gl, gr))
         return 0;
-    /* g within its noise of 0 at l (l a crossing just found): narrowing
+    /* g within its noise of 0 at l, l a crossing just found: narrowing
      * from there would find the noise's sign changes next to it, so the
-     * interval is halved until g at its left end stands clear */
-    int clear = fabs(gl) > s->noise || depth >= ISOLATE_DEPTH;
-    if ((v == 0 || v == 1 || depth >= ISOLATE_DEPTH) && clear) {
-        if (!hl_event_crosses(s->ev, gl, gr) || fabs(gl) <= s->noise)
+     * interval is halved until g at its left end stands clear.  Only
+     * there: at a step's start g's sign is the one the last step ended
+     * with, and a crossing close after it is real (x = 1 - 1e-12 on a
+     * long step, where g's noise is 1e-13) */
+    int noisy = l == s->found && fabs(gl) <= s->noise;
+    int last = depth >= ISOLATE_DEPTH || --s->budget <= 0;
+    if ((v == 0 || v == 1 || last) && (!noisy || last)) {
+        if (!hl_event_crosses(s->ev, gl, gr) || noisy)
             return 0; /* one root going the other way, none after all, or noise */
         *tau = narrow(s->ev, s->state, s->arg, l * s->h, r * s->h, gl, gr, s->z);
         return 1;
@@ -322,7 +343,18 @@ int hl_event_first_taylor(hl_event *ev, const double *coef, int p, double dir, d
         P[k] = G[k] * hk;
     if (a == 0 && far_from_zero(P, p))
         return 0; /* most steps: g stays well away from the surface */
-    isolate s = {ev, state, arg, P, ev->buf + 3 * ev->cap, p, h, P + ev->cap, z, noise_of(P, p)};
+    isolate s = {ev,
+                 state,
+                 arg,
+                 P,
+                 ev->buf + 3 * ev->cap,
+                 p,
+                 h,
+                 P + ev->cap,
+                 z,
+                 noise_of(P, p),
+                 ISOLATE_BUDGET,
+                 a > 0 ? a / h : -1};
     double gb = g_at(ev, state, arg, h, z);
     return isolate_first(&s, a / h, 1, ga, gb, 0, tau);
 }

@@ -40,4 +40,21 @@ PYEOF
         done
     done
 done
+# An orbit that lies in the surface (the pendulum at rest at q = 0, the
+# section q = 0): g is 0 along every step, no sign changes, no crossing.
+# The root isolation once bisected such a step 2^40 ways (a sweep with
+# --event q=0 on that grid point never ended); now it is told at once.
+# at_rest ARGS...: hamlie ARGS on it, under 10 CPU seconds
+at_rest() {
+    timeout 60 bash -c 'ulimit -t 10; exec "$@"' _ "$HAMLIE" "$@" -H 'p^2/2 - cos(q)' --scheme lie \
+        --dt 0.1 --t 30 --event q=0 >"$tmp/out" 2>"$tmp/err"
+    local rc=$?
+    if [ $rc -eq 0 ]; then ok; else bad "at rest on the surface: hamlie $1 exited $rc"; fi
+}
+at_rest run --init q=0,p=0 --json
+if $PY -c 'import json, sys; assert json.load(open(sys.argv[1]))["event"]["table"] == []' "$tmp/out"; then
+    ok
+else bad "at rest: crossings in the run"; fi
+at_rest sweep --grid q=0,p=0 --out "$tmp/rest.csv"
+if [ "$(cat "$tmp/rest-cross.csv")" = "member,t,q,p" ]; then ok; else bad "at rest: crossings in the sweep"; fi
 finish
