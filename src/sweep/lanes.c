@@ -89,6 +89,12 @@ long sweep_lanes_unit(const hl_sweep *sw, long lane_members, int threads)
      * least a round of the lanes each: a lane that finishes early takes the
      * next member while the unit has one */
     long u = lane_members / ((long)threads * 4);
-    (void)sw;
-    return u < SWEEP_LANES ? SWEEP_LANES : u > 64 ? 64 : u;
+    /* a group of fixed-step members (one scheme and dt) takes one member
+     * a point, a lie group one a dt: a round of the lanes for each group
+     * needs SWEEP_LANES points */
+    long per_point = 0;
+    for (int i = 0; i < sw->nschemes; i++)
+        per_point += sweep_in_lanes(sw, i) ? sw->ndts : 0;
+    long least = SWEEP_LANES * (per_point > 0 ? per_point : 1);
+    return u < least ? least : u > 64 ? (least > 64 ? least : 64) : u;
 }
