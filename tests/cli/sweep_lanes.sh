@@ -58,7 +58,7 @@ PYEOF
 H='p^2/2 + q^2/2 - q^4/4'
 args=(sweep -H "$H" --grid 'q=-0.9:0.9:6,1.5,-2,p=0,0.1' --scheme lie,stormer-verlet-kdk,rk4,euler
     --dt 0.002,0.25 --t 10 --tol 1e-9)
-for mt in 0-1 1-1 1-2; do # lanes off-on, threads (off with 2 threads: above)
+for mt in 0-1 1-1 1-2; do # lanes off with 1 thread; on with 1 and 2
     mode=${mt%-*} threads=${mt#*-}
     HAMLIE_SWEEP_BATCH=$mode HAMLIE_JIT_VERBOSE=1 run 1 "${args[@]}" --threads $threads \
         --out "$tmp/f$mode-t$threads.csv"
