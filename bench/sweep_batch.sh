@@ -27,6 +27,19 @@
 #     single-interp 502/s, single-native 985/s: 3.40x and 1.73x
 #   128 members, dt 1000: 1829, 388 and 1067/s: 4.71x and 1.71x
 #   every CSV the same bytes in the three modes.
+#
+# Then the fixed-step members (hl_run_fixed_batch's compiled loop in the
+# machine's lanes): `--scheme stormer-verlet-kdk --dt 0.01 --t 1000` on the
+# same points (10^5 steps each), lanes (=1) against one member at a time
+# (=0: hl_run_fixed's own compiled scalar loop, the fastest single path),
+# both with their code in the cache (a first run each puts it there).
+#   FIXED_MEMBERS (env): default 256.
+# Measured 2026-11-28 (commit 55411d2, same machine, load ~4-8, AVX-512: 8
+# lanes; CPU seconds, the best of 3): 256 members, lanes 0.06 s (4267
+# members/s) against 0.27 s (948/s) one at a time: 4.5x; 1024 members
+# (FIXED_MEMBERS=1024; /usr/bin/time's 10 ms matter less) 0.19 s (5389/s)
+# against 1.11 s (923/s): 5.8x (10.8 ns a step alone, 1.9 ns a member-step
+# in lanes); the CSVs the same bytes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
@@ -80,3 +93,19 @@ echo "single-native,$native,$(rate "$native")"
 awk -v a="$single" -v n="$native" -v b="$lanes" \
     'BEGIN {printf "# lanes against single-interp: %.2fx; against single-native: %.2fx\n", a / b, n / b}'
 echo "# the same CSV bytes: lanes/single-interp $same, lanes/single-native $same_n"
+
+# ---- fixed-step members ----------------------------------------------------------------
+M=${FIXED_MEMBERS:-256}
+args=(sweep -H "$HH" --random 'x=0,y=-0.25:0.25,px=-0.35:0.35,py=0.2' --count "$M" --seed 5
+    --scheme stormer-verlet-kdk --dt 0.01 --t 1000 --threads 1)
+cpu 1 "$out/fixed-lanes.csv" >/dev/null # the codes into the cache
+cpu 0 "$out/fixed-single.csv" >/dev/null
+flanes=$(best 1 "$out/fixed-lanes.csv")
+fsingle=$(best 0 "$out/fixed-single.csv")
+cmp -s "$out/fixed-lanes.csv" "$out/fixed-single.csv" && same_f=yes || same_f=NO
+echo "# stormer-verlet-kdk, dt 0.01, t 1000, $M members"
+echo "mode,cpu_s,members_per_s"
+echo "fixed-lanes,$flanes,$(rate "$flanes")"
+echo "fixed-single-native,$fsingle,$(rate "$fsingle")"
+awk -v a="$fsingle" -v b="$flanes" 'BEGIN {printf "# fixed lanes against single-native: %.2fx\n", a / b}'
+echo "# the same CSV bytes: fixed lanes/single $same_f"

@@ -1,10 +1,11 @@
 /* Which members of a sweep share SIMD lanes, and when (issue 15 part 5).
- * The one place that groups members for lanes: the lie members now (the
- * Taylor integrator's batch, run.h's hl_run_adaptive_lanes), a fixed-step
- * batch later (same_dt).  A group holds members of one paramset (one
- * system, one tape) and one scheme; the lanes give each member its own
- * run's bits, so the grouping, and whether lanes are used at all, only
- * moves time: the table is the same either way. */
+ * The one place that groups members for lanes: the lie members (the
+ * Taylor integrator's batch, run.h's hl_run_adaptive_lanes) and the
+ * fixed-step ones (hl_run_fixed_batch's compiled loop, same_dt).  A group
+ * holds members of one paramset (one system, one tape) and one scheme; the
+ * lanes give each member its own run's bits, so the grouping, and whether
+ * lanes are used at all, only moves time: the table is the same either
+ * way. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -29,6 +30,22 @@ int sweep_has_lie(const hl_sweep *sw)
 {
     for (int i = 0; i < sw->nschemes; i++)
         if (sweep_is_lie(sw, i))
+            return 1;
+    return 0;
+}
+
+int sweep_in_lanes(const hl_sweep *sw, int scheme)
+{
+    /* --reference and --order make a fixed-step member's row of more than
+     * its run at dt (a reference run beside it, a run at dt/2): lanes hold
+     * only the run itself */
+    return sweep_is_lie(sw, scheme) || (!sw->spec.reference && !sw->spec.order);
+}
+
+int sweep_has_lanes(const hl_sweep *sw)
+{
+    for (int i = 0; i < sw->nschemes; i++)
+        if (sweep_in_lanes(sw, i))
             return 1;
     return 0;
 }
@@ -66,12 +83,18 @@ long sweep_lane_groups(const hl_sweep *sw, const long *list, long n,
     return ngroups;
 }
 
-long sweep_lanes_unit(const hl_sweep *sw, long lie_members, int threads)
+long sweep_lanes_unit(const hl_sweep *sw, long lane_members, int threads)
 {
     /* a few units per thread, so that the threads end together, and at
      * least a round of the lanes each: a lane that finishes early takes the
      * next member while the unit has one */
-    long u = lie_members / ((long)threads * 4);
-    (void)sw;
-    return u < SWEEP_LANES ? SWEEP_LANES : u > 64 ? 64 : u;
+    long u = lane_members / ((long)threads * 4);
+    /* a group of fixed-step members (one scheme and dt) takes one member
+     * a point, a lie group one a dt: a round of the lanes for each group
+     * needs SWEEP_LANES points */
+    long per_point = 0;
+    for (int i = 0; i < sw->nschemes; i++)
+        per_point += sweep_in_lanes(sw, i) ? sw->ndts : 0;
+    long least = SWEEP_LANES * (per_point > 0 ? per_point : 1);
+    return u < least ? least : u > 64 ? (least > 64 ? least : 64) : u;
 }

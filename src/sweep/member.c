@@ -1,7 +1,7 @@
 /* One member of a sweep -> one row: the run of its scheme from its point
- * (hl_run_fixed, or hl_run_adaptive for "lie": several at once in SIMD
- * lanes, hl_run_adaptive_lanes, where that pays), the observed order from dt
- * and dt/2, and the chaos indicators of its (point, paramset), computed
+ * (hl_run_fixed, or hl_run_adaptive for "lie"; several at once in SIMD
+ * lanes where that pays: hl_run_adaptive_lanes, hl_run_fixed_batch), the
+ * observed order from dt and dt/2, and the chaos indicators of its (point, paramset), computed
  * once and kept while the members of that group follow.  A worker belongs
  * to one thread: it holds a system, the runs and a chaos object per
  * paramset, built when first needed.  A failure is the row's status and
@@ -26,10 +26,10 @@ typedef struct paramset_ctx {
     hl_run **run;         /* nschemes */
     hl_chaos *chaos;      /* when spec.chaos */
     hl_run_lanes **lanes; /* nschemes: a lie scheme's lanes, when they pay */
-    char *lanes_tried;    /* nschemes: asked once */
+    char *lanes_tried;    /* nschemes: asked once (fixed-step: the loop's compiling) */
 } paramset_ctx;
 
-/* The rows of lie members run in lanes (sweep_worker_prepare), until
+/* The rows of members run in lanes (sweep_worker_prepare), until
  * sweep_member hands them out. */
 typedef struct ready_rows {
     long n, cap;
@@ -63,7 +63,7 @@ sweep_worker *sweep_worker_new(const hl_sweep *sw)
     w->chaos_point = -1;
     /* the lanes give final rows only: a member's arrays need its own run */
     int arrays = sw->spec.save_every > 0 || sw->spec.event != NULL;
-    w->lanes_mode = sweep_has_lie(sw) && !arrays ? sweep_lanes_mode() : SWEEP_LANES_OFF;
+    w->lanes_mode = sweep_has_lanes(sw) && !arrays ? sweep_lanes_mode() : SWEEP_LANES_OFF;
     sweep_arrays_init(&w->arrays, sw);
     return w;
 }
@@ -254,20 +254,27 @@ static hl_status run_member(sweep_worker *w, paramset_ctx *c, sweep_where at, do
     return st;
 }
 
-/* ---- lie members in lanes --------------------------------------------------- */
+/* ---- members in lanes ------------------------------------------------------- */
 
-static int fits_lanes(const hl_sweep *sw, sweep_where at)
+static int fits_lie(const hl_sweep *sw, sweep_where at)
 {
     return sweep_is_lie(sw, at.scheme);
 }
 
+static int fits_fixed(const hl_sweep *sw, sweep_where at)
+{
+    return !sweep_is_lie(sw, at.scheme) && sweep_in_lanes(sw, at.scheme);
+}
+
+/* Lanes' code is compiled one thread at a time: with the disk cache the
+ * first thread compiles and the others load its code, instead of each
+ * compiling it. */
+static pthread_mutex_t making = PTHREAD_MUTEX_INITIALIZER;
+
 /* The lanes of (paramset, lie scheme): made the first time they pay for
- * the sweep's members of that pair (from the first step at z0), or never.
- * Made one thread at a time: with the disk cache the first compiles and
- * the others load its code, instead of each compiling for a second. */
+ * the sweep's members of that pair (from the first step at z0), or never. */
 static hl_run_lanes *lanes_for(sweep_worker *w, paramset_ctx *c, int scheme, const double *z0)
 {
-    static pthread_mutex_t making = PTHREAD_MUTEX_INITIALIZER;
     const hl_sweep *sw = w->sw;
     if (c->lanes_tried[scheme])
         return c->lanes[scheme];
@@ -323,9 +330,44 @@ long sweep_lanes_members(void)
     return atomic_load(&lanes_members);
 }
 
-/* Members ms[0..B-1], lie members of one paramset and scheme, through the
- * lanes: each row as run_member makes it. */
-static void run_in_lanes(sweep_worker *w, paramset_ctx *c, hl_run_lanes *ls, const long *ms, int B)
+/* How a group of nb members (scheme at.scheme; nb > 0) runs side by side:
+ * from z0 (dt[j] each) into z, s, st and errs as run_member's runs; the
+ * members that ran in lanes are counted. */
+typedef void lanes_call(paramset_ctx *c, const hl_sweep *sw, sweep_where at, int nb,
+                        const double *z0, const double *dt, double *z, hl_run_stats *s,
+                        hl_status *st, hl_error *errs);
+
+static void lie_lanes(paramset_ctx *c, const hl_sweep *sw, sweep_where at, int nb, const double *z0,
+                      const double *dt, double *z, hl_run_stats *s, hl_status *st, hl_error *errs)
+{
+    hl_run_adaptive_lanes(c->lanes[at.scheme], nb, z0, dt, sw->spec.t, z, s, st, errs);
+    atomic_fetch_add(&lanes_members, nb);
+}
+
+/* The group shares dt (fits_fixed's groups); hl_run_fixed_batch runs it in
+ * lanes where its compiled loop pays, else one member at a time. */
+static void fixed_lanes(paramset_ctx *c, const hl_sweep *sw, sweep_where at, int nb,
+                        const double *z0, const double *dt, double *z, hl_run_stats *s,
+                        hl_status *st, hl_error *errs)
+{
+    hl_run *run = c->run[at.scheme];
+    hl_run_set_reference(run, 0, sw->spec.tol); /* as run_member: sweep_in_lanes */
+    int lanes;
+    if (!c->lanes_tried[at.scheme]) { /* the loop compiled (or loaded) under the lock */
+        c->lanes_tried[at.scheme] = 1;
+        pthread_mutex_lock(&making);
+        lanes = hl_run_batch_lanes(run, nb, dt[0], sw->spec.t);
+        pthread_mutex_unlock(&making);
+    } else
+        lanes = hl_run_batch_lanes(run, nb, dt[0], sw->spec.t);
+    hl_run_fixed_batch(run, nb, z0, dt[0], sw->spec.t, z, s, st, errs, NULL);
+    if (lanes > 1)
+        atomic_fetch_add(&lanes_members, nb);
+}
+
+/* Members ms[0..B-1] of one paramset and scheme side by side (call): each
+ * row as run_member makes it. */
+static void run_in_lanes(sweep_worker *w, paramset_ctx *c, lanes_call *call, const long *ms, int B)
 {
     const hl_sweep *sw = w->sw;
     const int n2 = 2 * sw->N, nc = sw->ncols;
@@ -352,17 +394,29 @@ static void run_in_lanes(sweep_worker *w, paramset_ctx *c, hl_run_lanes *ls, con
         dt[nb] = sw->dt[at.dt];
         slot[nb++] = k;
     }
-    hl_run_adaptive_lanes(ls, nb, z0, dt, sw->spec.t, z, s, st, errs);
-    atomic_fetch_add(&lanes_members, nb);
+    if (nb > 0)
+        call(c, sw, sweep_locate(sw, ms[0]), nb, z0, dt, z, s, st, errs);
     for (int j = 0; j < nb; j++) {
         double *row = w->ready.row + slot[j] * nc;
         fill_stats(sw, &s[j], z + (size_t)j * n2, row);
-        row[sw->c_t + 5] = row[sw->c_t + 6] = NAN; /* no reference for lie */
+        row[sw->c_t + 5] = row[sw->c_t + 6] = NAN; /* no reference in lanes */
         w->ready.status[slot[j]] = st[j];
         if (st[j] != HL_OK)
             set_reason(w->ready.reason + slot[j] * HL_SWEEP_REASON, "", &errs[j]);
     }
     free(z0), free(z), free(dt), free(slot), free(s), free(st), free(errs);
+}
+
+/* Group g's members into ms (*B of them) and their paramset's ctx; NULL
+ * if its setup failed (sweep_member gives each member that failure). */
+static paramset_ctx *lane_group(sweep_worker *w, const long *list, const long *order,
+                                const long *start, long g, long *ms, int *B)
+{
+    *B = (int)(start[g + 1] - start[g]);
+    for (int j = 0; j < *B; j++)
+        ms[j] = list[order[start[g] + j]];
+    paramset_ctx *c = get_ctx(w, sweep_locate(w->sw, ms[0]).paramset);
+    return c->status == HL_OK ? c : NULL;
 }
 
 void sweep_worker_prepare(sweep_worker *w, const long *list, long n)
@@ -374,19 +428,22 @@ void sweep_worker_prepare(sweep_worker *w, const long *list, long n)
     long *order = hl_xcalloc((size_t)n + 1, sizeof *order);
     long *start = hl_xcalloc((size_t)n + 2, sizeof *start);
     long *ms = hl_xcalloc((size_t)n + 1, sizeof *ms);
-    long ng = sweep_lane_groups(sw, list, n, fits_lanes, 0, order, start);
+    int B;
+    long ng = sweep_lane_groups(sw, list, n, fits_lie, 0, order, start);
     for (long g = 0; g < ng; g++) {
-        int B = (int)(start[g + 1] - start[g]);
-        for (int j = 0; j < B; j++)
-            ms[j] = list[order[start[g] + j]];
+        paramset_ctx *c = lane_group(w, list, order, start, g, ms, &B);
+        if (c == NULL)
+            continue;
         sweep_where at = sweep_locate(sw, ms[0]);
-        paramset_ctx *c = get_ctx(w, at.paramset);
-        if (c->status != HL_OK)
-            continue; /* sweep_member gives each its ctx's failure */
         sweep_point(sw, at.point, w->z0);
-        hl_run_lanes *ls = lanes_for(w, c, at.scheme, w->z0);
-        if (ls != NULL)
-            run_in_lanes(w, c, ls, ms, B);
+        if (lanes_for(w, c, at.scheme, w->z0) != NULL)
+            run_in_lanes(w, c, lie_lanes, ms, B);
+    }
+    ng = sweep_lane_groups(sw, list, n, fits_fixed, 1 /* same dt */, order, start);
+    for (long g = 0; g < ng; g++) {
+        paramset_ctx *c = lane_group(w, list, order, start, g, ms, &B);
+        if (c != NULL)
+            run_in_lanes(w, c, fixed_lanes, ms, B);
     }
     free(order), free(start), free(ms);
 }

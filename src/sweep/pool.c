@@ -3,9 +3,9 @@
  * chaos indicators are computed once per unit — handed out one at a time
  * through an atomic counter.  Each thread has its own worker (system, runs,
  * chaos object); results and progress go out one call at a time under a
- * mutex.  A row depends only on its member, never on the thread.  With lie
+ * mutex.  A row depends only on its member, never on the thread.  With
  * members to run in SIMD lanes (lanes.c) a unit is several such runs,
- * enough lie members to fill the lanes a few times over, and the worker
+ * enough of those members to fill the lanes a few times over, and the worker
  * runs them in lanes before handing the unit's rows out in order. */
 #include <pthread.h>
 #include <stdatomic.h>
@@ -42,26 +42,26 @@ static long group_of(const hl_sweep *sw, long m)
     return m / ((long)sw->nschemes * sw->ndts);
 }
 
-static int lie_at(const pool *p, long i)
+static int in_lanes_at(const pool *p, long i)
 {
-    return sweep_is_lie(p->sw, sweep_locate(p->sw, member_at(p, i)).scheme);
+    return sweep_in_lanes(p->sw, sweep_locate(p->sw, member_at(p, i)).scheme);
 }
 
 /* Units of whole groups; with lanes, groups joined until a unit holds
- * `per_unit` lie members (per_unit 0: a group each). */
+ * `per_unit` members that may run in lanes (per_unit 0: a group each). */
 static void cut_units(pool *p, long per_unit)
 {
     p->unit = hl_xcalloc((size_t)p->n + 1, sizeof *p->unit);
     p->nunits = 0;
-    long lie = 0; /* in the unit so far */
+    long lanes = 0; /* in the unit so far */
     for (long i = 0; i < p->n; i++) {
         int new_group =
             i == 0 || group_of(p->sw, member_at(p, i)) != group_of(p->sw, member_at(p, i - 1));
-        if (new_group && (i == 0 || lie >= per_unit)) {
+        if (new_group && (i == 0 || lanes >= per_unit)) {
             p->unit[p->nunits++] = i;
-            lie = 0;
+            lanes = 0;
         }
-        lie += per_unit > 0 && lie_at(p, i);
+        lanes += per_unit > 0 && in_lanes_at(p, i);
     }
     p->unit[p->nunits] = p->n;
     p->longest = 0;
@@ -70,15 +70,15 @@ static void cut_units(pool *p, long per_unit)
             p->longest = p->unit[u + 1] - p->unit[u];
 }
 
-/* The lie members per unit when lanes may run them, else 0. */
+/* The members per unit that lanes may run, when they may, else 0. */
 static long lanes_per_unit(const pool *p, int threads)
 {
-    if (!sweep_has_lie(p->sw) || sweep_lanes_mode() == SWEEP_LANES_OFF)
+    if (!sweep_has_lanes(p->sw) || sweep_lanes_mode() == SWEEP_LANES_OFF)
         return 0;
-    long lie = 0;
+    long lanes = 0;
     for (long i = 0; i < p->n; i++)
-        lie += lie_at(p, i);
-    return sweep_lanes_unit(p->sw, lie, threads);
+        lanes += in_lanes_at(p, i);
+    return sweep_lanes_unit(p->sw, lanes, threads);
 }
 
 /* Hands one result out, under the lock. */

@@ -109,10 +109,12 @@ void sweep_worker_free(sweep_worker *w);
  * of one group share them. */
 void sweep_member(sweep_worker *w, long m, double *row, hl_status *status, char *reason);
 
-/* Runs the lie members among list[0..n-1] (a work unit) in SIMD lanes
- * where that pays (lanes.c), keeping their rows for sweep_member. */
+/* Runs the members among list[0..n-1] (a work unit) that may share SIMD
+ * lanes (lanes.c: lie members, and fixed-step ones without --reference or
+ * --order) in lanes where that pays, keeping their rows for sweep_member. */
 void sweep_worker_prepare(sweep_worker *w, const long *list, long n);
-/* The members this process has run in lanes (tests). */
+/* The members this process has run in lanes (tests): lie members in
+ * lanes, fixed-step ones in a batch whose compiled loop runs lanes. */
 long sweep_lanes_members(void);
 
 /* lanes.c: which members share SIMD lanes.  HAMLIE_SWEEP_BATCH=0 never,
@@ -123,6 +125,10 @@ enum { SWEEP_LANES_OFF, SWEEP_LANES_ON, SWEEP_LANES_AUTO };
 int sweep_lanes_mode(void);
 int sweep_is_lie(const hl_sweep *sw, int scheme);
 int sweep_has_lie(const hl_sweep *sw);
+/* 1 if the scheme's members may run in lanes: lie ones, and fixed-step
+ * ones when the sweep has neither --reference nor --order. */
+int sweep_in_lanes(const hl_sweep *sw, int scheme);
+int sweep_has_lanes(const hl_sweep *sw);
 /* The members of list[0..n-1] that fit (fits), in groups of one paramset
  * and scheme (and dt if same_dt), each in list order: order[] their
  * positions in list, group after group, start[g] group g's first (start
@@ -130,8 +136,8 @@ int sweep_has_lie(const hl_sweep *sw);
 long sweep_lane_groups(const hl_sweep *sw, const long *list, long n,
                        int (*fits)(const hl_sweep *sw, sweep_where at), int same_dt, long *order,
                        long *start);
-/* How many lie members a work unit should hold for the lanes. */
-long sweep_lanes_unit(const hl_sweep *sw, long lie_members, int threads);
+/* How many members that may run in lanes a work unit should hold. */
+long sweep_lanes_unit(const hl_sweep *sw, long lane_members, int threads);
 /* arrays.c: a thread's collector of one member's arrays (sweep.h,
  * "Arrays"): the trajectory rows of its run's callback and the crossings
  * of the run's event, while on (the runs for the order at dt/2 give none). */
