@@ -174,6 +174,12 @@ char *hl_expr_print(const hl_expr *e, hl_style style);
  * caller can print and check the size in one pass. */
 char *hl_expr_print_within(const hl_expr *e, hl_style style, double max_nodes);
 
+/* A rational number as every printer writes it, "3", "-3", "3/2", appended
+ * to b (small integers without fmpz_get_str's allocation). */
+typedef struct hl_buf hl_buf;
+void hl_expr_put_fmpz(hl_buf *b, const fmpz *x);
+void hl_expr_put_fmpq(hl_buf *b, const fmpq *c);
+
 /* The number of nodes of e written out as a tree, a shared node counted
  * each time it is referenced: the size of its printed form in operands and
  * operators (exponential in the DAG's depth at worst, hence a double). */

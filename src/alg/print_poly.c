@@ -39,29 +39,6 @@ static void put_digits(hl_buf *b, ulong u, int minus)
     hl_buf_putn(b, d, (size_t)(end - d));
 }
 
-/* As expr/print.c's put_fmpz. */
-static void put_fmpz(hl_buf *b, const fmpz_t x)
-{
-    if (!COEFF_IS_MPZ(*x)) {
-        slong v = *x; /* |v| < 2^62: its negation cannot overflow */
-        put_digits(b, v < 0 ? (ulong)-v : (ulong)v, v < 0);
-        return;
-    }
-    char *s = fmpz_get_str(NULL, 10, x);
-    hl_buf_puts(b, s);
-    flint_free(s);
-}
-
-/* A number: "3", "-3", "3/2". */
-static void put_fmpq(hl_buf *b, const fmpq_t c)
-{
-    put_fmpz(b, fmpq_numref(c));
-    if (!fmpz_is_one(fmpq_denref(c))) {
-        hl_buf_putc(b, '/');
-        put_fmpz(b, fmpq_denref(c));
-    }
-}
-
 /* ---- term order (print.c rule 1) ---------------------------------------------- */
 
 typedef struct okey {
@@ -148,21 +125,21 @@ static void put_term(hl_buf *b, pwriter *w, const fmpq_t c, const ulong *e)
     if (is_constant(w, e)) {
         fmpz_abs(fmpq_numref(w->q), fmpq_numref(c)); /* w->q may be c: fine */
         fmpz_set(fmpq_denref(w->q), fmpq_denref(c));
-        put_fmpq(b, w->q);
+        hl_expr_put_fmpq(b, w->q);
         return;
     }
     if (!fmpz_is_pm1(fmpq_numref(c))) {
         fmpz_t a;
         fmpz_init(a);
         fmpz_abs(a, fmpq_numref(c));
-        put_fmpz(b, a);
+        hl_expr_put_fmpz(b, a);
         fmpz_clear(a);
         hl_buf_putc(b, '*');
     }
     put_monomial(b, w, e);
     if (!fmpz_is_one(fmpq_denref(c))) {
         hl_buf_putc(b, '/');
-        put_fmpz(b, fmpq_denref(c));
+        hl_expr_put_fmpz(b, fmpq_denref(c));
     }
 }
 
@@ -193,7 +170,7 @@ static size_t fmpz_text_len(const fmpz_t x)
 {
     hl_buf b;
     hl_buf_init(&b);
-    put_fmpz(&b, x);
+    hl_expr_put_fmpz(&b, x);
     size_t n = b.len;
     hl_buf_clear(&b);
     return n;

@@ -87,7 +87,7 @@ static int bytes_reserve(bytes *b, size_t more)
 
 static void bytes_put(bytes *b, const void *src, size_t n)
 {
-    if (bytes_reserve(b, n) == 0) {
+    if (n > 0 && bytes_reserve(b, n) == 0) { /* n = 0: src may be NULL (no rows) */
         memcpy(b->p + b->n, src, n);
         b->n += n;
     }

@@ -33,7 +33,7 @@ static int num_sgn(const hl_expr *e) { return fmpz_sgn(fmpq_numref(e->num)); }
 /* Most numbers printed are small: those are written here, without the
  * allocation and the GMP conversion fmpz_get_str costs (~500 instructions
  * a number, a sixth of printing a large series). */
-static void put_fmpz(hl_buf *b, const fmpz_t x)
+void hl_expr_put_fmpz(hl_buf *b, const fmpz *x)
 {
     if (!COEFF_IS_MPZ(*x)) {
         char digits[24], *end = digits + sizeof digits, *d = end;
@@ -50,6 +50,15 @@ static void put_fmpz(hl_buf *b, const fmpz_t x)
     char *s = fmpz_get_str(NULL, 10, x);
     hl_buf_puts(b, s);
     flint_free(s);
+}
+
+void hl_expr_put_fmpq(hl_buf *b, const fmpq *c)
+{
+    hl_expr_put_fmpz(b, fmpq_numref(c));
+    if (!fmpz_is_one(fmpq_denref(c))) {
+        hl_buf_putc(b, '/');
+        hl_expr_put_fmpz(b, fmpq_denref(c));
+    }
 }
 
 /* ---- text, sympy, C: priorities of printed forms ---------------------------- */
@@ -216,21 +225,21 @@ static int print_all(hl_buf *b, const hl_expr *root, hl_style st, print_fn *prin
 static void put_number(hl_buf *b, hl_style st, const hl_expr *e)
 {
     if (st != HL_STYLE_C) {
-        put_fmpz(b, fmpq_numref(e->num));
+        hl_expr_put_fmpz(b, fmpq_numref(e->num));
         if (!num_is_int(e)) {
             hl_buf_putc(b, '/');
-            put_fmpz(b, fmpq_denref(e->num));
+            hl_expr_put_fmpz(b, fmpq_denref(e->num));
         }
         return;
     }
     /* C: doubles, and a fraction as one parenthesised quotient */
     if (!num_is_int(e))
         hl_buf_putc(b, '(');
-    put_fmpz(b, fmpq_numref(e->num));
+    hl_expr_put_fmpz(b, fmpq_numref(e->num));
     hl_buf_puts(b, ".0");
     if (!num_is_int(e)) {
         hl_buf_putc(b, '/');
-        put_fmpz(b, fmpq_denref(e->num));
+        hl_expr_put_fmpz(b, fmpq_denref(e->num));
         hl_buf_puts(b, ".0)");
     }
 }
@@ -456,7 +465,7 @@ static void latex_call(hl_buf *b, pieces *S, hl_fun f, const hl_expr *arg,
 static void latex_number(hl_buf *b, const hl_expr *e)
 {
     if (num_is_int(e)) {
-        put_fmpz(b, fmpq_numref(e->num));
+        hl_expr_put_fmpz(b, fmpq_numref(e->num));
         return;
     }
     if (num_sgn(e) < 0)
@@ -465,10 +474,10 @@ static void latex_number(hl_buf *b, const hl_expr *e)
     fmpz_t t;
     fmpz_init(t);
     fmpz_abs(t, fmpq_numref(e->num));
-    put_fmpz(b, t);
+    hl_expr_put_fmpz(b, t);
     fmpz_clear(t);
     hl_buf_puts(b, "}{");
-    put_fmpz(b, fmpq_denref(e->num));
+    hl_expr_put_fmpz(b, fmpq_denref(e->num));
     hl_buf_putc(b, '}');
 }
 

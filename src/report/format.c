@@ -49,27 +49,6 @@ static long direct_max_terms(const hl_alg_ctx *ctx)
     return hl_format_no_direct ? -1 : PRINT_FIRST_NODES / (4 * hl_alg_ctx_nbase(ctx) + 16);
 }
 
-/* As expr/print.c writes an integer. */
-static void put_fmpz(hl_buf *b, const fmpz_t x)
-{
-    if (!COEFF_IS_MPZ(*x)) {
-        hl_buf_printf(b, "%ld", (long)*x);
-        return;
-    }
-    char *s = fmpz_get_str(NULL, 10, x);
-    hl_buf_puts(b, s);
-    flint_free(s);
-}
-
-static void put_fmpq(hl_buf *b, const fmpq_t c)
-{
-    put_fmpz(b, fmpq_numref(c));
-    if (!fmpz_is_one(fmpq_denref(c))) {
-        hl_buf_putc(b, '/');
-        put_fmpz(b, fmpq_denref(c));
-    }
-}
-
 /* rest as a factor: a sum in parentheses. */
 static void put_rest(hl_buf *b, hl_alg_rest kind, const hl_buf *rest)
 {
@@ -84,7 +63,7 @@ static void put_rest(hl_buf *b, hl_alg_rest kind, const hl_buf *rest)
 static void put_element(hl_buf *b, const fmpq_t r, hl_alg_rest kind, const hl_buf *rest)
 {
     if (kind == HL_ALG_REST_NONE) {
-        put_fmpq(b, r);
+        hl_expr_put_fmpq(b, r);
         return;
     }
     if (kind == HL_ALG_REST_SUM && fmpq_is_one(r)) {
@@ -97,14 +76,14 @@ static void put_element(hl_buf *b, const fmpq_t r, hl_alg_rest kind, const hl_bu
         fmpz_t n;
         fmpz_init(n);
         fmpz_abs(n, fmpq_numref(r));
-        put_fmpz(b, n);
+        hl_expr_put_fmpz(b, n);
         fmpz_clear(n);
         hl_buf_putc(b, '*');
     }
     put_rest(b, kind, rest);
     if (!fmpz_is_one(fmpq_denref(r))) {
         hl_buf_putc(b, '/');
-        put_fmpz(b, fmpq_denref(r));
+        hl_expr_put_fmpz(b, fmpq_denref(r));
     }
 }
 
@@ -341,7 +320,7 @@ static void put_neg_number(hl_buf *b, const fmpq_t a, hl_style style)
 {
     int paren = style == HL_STYLE_TEXT || !fmpz_is_one(fmpq_denref(a));
     hl_buf_puts(b, paren ? "-(" : "-");
-    put_fmpq(b, a);
+    hl_expr_put_fmpq(b, a);
     if (paren)
         hl_buf_putc(b, ')');
 }
@@ -363,7 +342,7 @@ static void put_series_term(hl_buf *b, const fmpq_t r, int k, const char *Dk, hl
         if (lead_minus)
             put_neg_number(b, a, style);
         else
-            put_fmpq(b, a);
+            hl_expr_put_fmpq(b, a);
     } else if (k == 0 && kind == HL_ALG_REST_SUM && fmpq_is_one(a)) { /* the sum itself */
         if (first && !neg)
             hl_buf_putn(b, rest->s, rest->len);
@@ -379,7 +358,7 @@ static void put_series_term(hl_buf *b, const fmpq_t r, int k, const char *Dk, hl
             if (lead_minus)
                 put_neg_number(b, n, style);
             else
-                put_fmpz(b, fmpq_numref(a));
+                hl_expr_put_fmpz(b, fmpq_numref(a));
             hl_buf_putc(b, '*');
         } else if (lead_minus)
             hl_buf_putc(b, '-');
@@ -388,7 +367,7 @@ static void put_series_term(hl_buf *b, const fmpq_t r, int k, const char *Dk, hl
             hl_buf_puts(b, Dk);
             if (!fmpz_is_one(fmpq_denref(a))) {
                 hl_buf_putc(b, '/');
-                put_fmpz(b, fmpq_denref(a));
+                hl_expr_put_fmpz(b, fmpq_denref(a));
             }
             if (kind != HL_ALG_REST_NONE) {
                 hl_buf_putc(b, '*');
@@ -398,7 +377,7 @@ static void put_series_term(hl_buf *b, const fmpq_t r, int k, const char *Dk, hl
             put_rest(b, kind, rest);
             if (!fmpz_is_one(fmpq_denref(a))) {
                 hl_buf_putc(b, '/');
-                put_fmpz(b, fmpq_denref(a));
+                hl_expr_put_fmpz(b, fmpq_denref(a));
             }
         }
     }

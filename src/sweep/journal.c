@@ -91,7 +91,8 @@ static size_t parse_arrays(const hl_sweep *sw, const unsigned char *p, size_t at
             sc->v[k] = hl_xrealloc(sc->v[k], n * sizeof(double));
             sc->cap[k] = n;
         }
-        memcpy(sc->v[k], p + at, 8 * n);
+        if (n > 0) /* v may still be NULL: memcpy's pointers must not be */
+            memcpy(sc->v[k], p + at, 8 * n);
         at += 8 * n;
         r->nrows[k] = (long)rows;
         r->array[k] = sc->v[k];

@@ -83,9 +83,9 @@ static const hl_expr *gen(hl_pool *P, int depth)
     case 4: return hl_neg(P, a);
     case 5: return hl_pow(P, a, hl_num_si(P, 2 + (long)rnd(4)));
     case 6: return hl_pow(P, pos, hl_num_si(P, -1 - (long)rnd(3)));
-    case 7: { /* k/3, but 3/2 for 3/3 (POW3H) */
+    case 7: { /* k/3, but 3/2 (POW3H) for 3/3 and 0/3 (a constant 1, a trivial case) */
         long k = (long)rnd(9) - 4;
-        return hl_pow(P, pos, k == 3 ? hl_num_frac(P, 3, 2) : hl_num_frac(P, k, 3));
+        return hl_pow(P, pos, k == 3 || k == 0 ? hl_num_frac(P, 3, 2) : hl_num_frac(P, k, 3));
     }
     case 8: return hl_pow(P, pos, sa); /* non-constant exponent */
     case 9: return hl_call(P, HL_SQRT, pos);
