@@ -12,9 +12,8 @@ HAMLIE=${1:?usage: errors-budget.sh path/to/hamlie}
 . "$(dirname "$0")/lib/harness.sh"
 LIMIT=${HAMLIE_TEST_LIMIT:-20} # CPU seconds a call may take
 # The sanitizer build runs 3-5 times slower: there the limit is 4 times as
-# long, and Kepler (seconds a call here) is run for three schemes only,
-# which take each path that leaves a part out (K's closed form, the map,
-# the check by K), so CI stays short.
+# long, and Kepler (seconds a call here) is left to the normal build, so
+# CI stays short.
 SANITIZED=0
 ldd "$HAMLIE" 2>/dev/null | grep -q libasan && SANITIZED=1 && LIMIT=$((4 * LIMIT))
 KEPLER='(px^2+py^2)/2 - 1/sqrt(x^2+y^2)'
