@@ -239,11 +239,6 @@ static void build_eval(jit *J)
  * that input (sin Q): from the second step on, its values are the twin's of
  * the step before, the same bits, and the call is not made again
  * (Stormer-Verlet's two kicks a step, Yoshida's shared forces). */
-typedef struct carry {
-    int i, twin;           /* instruction indices in t->code */
-    gcc_jit_lvalue *d, *x; /* the carried values (x: the aux, e.g. cos) */
-} carry;
-
 static int carried_op(int op)
 {
     return op == HL_OP_POWK || op == HL_OP_POW3H || (op >= HL_OP_SQRT && op <= HL_OP_ACOS);
@@ -251,9 +246,8 @@ static int carried_op(int op)
 
 /* The instructions whose values a loop can carry; nmap inputs fed back.
  * Marks the twins' registers read where the carried ones are. */
-static carry *find_carries(jit *J, int nmap, int *n)
+carry *hl_jit_find_carries(const hl_tape *t, unsigned char *read, int nmap, int *n)
 {
-    const hl_tape *t = J->t;
     carry *cv = hl_xmalloc((size_t)(t->ncode + 1) * sizeof *cv);
     *n = 0;
     for (int k = 0; k < t->ncode; k++) {
@@ -264,9 +258,9 @@ static carry *find_carries(jit *J, int nmap, int *n)
             const hl_instr *w = &t->code[k2];
             if (k2 == k || w->op != i->op || w->b != i->b || w->a != t->outreg[i->a])
                 continue;
-            J->read[w->d] |= J->read[i->d];
+            read[w->d] |= read[i->d];
             if (w->x >= 0)
-                J->read[w->x] |= J->read[i->x];
+                read[w->x] |= read[i->x];
             cv[(*n)++] = (carry){k, k2, NULL, NULL};
             break;
         }
@@ -274,7 +268,7 @@ static carry *find_carries(jit *J, int nmap, int *n)
     return cv;
 }
 
-static int carried(const carry *cv, int n, int k)
+int hl_jit_carried(const carry *cv, int n, int k)
 {
     for (int j = 0; j < n; j++)
         if (cv[j].i == k)
@@ -370,7 +364,7 @@ static void build_loop(jit *J, int watch)
     for (int r = 0; r < t->nin; r++)
         hl_jit_assign(J, r, gcc_jit_lvalue_as_rvalue(elem(J, z, r)));
     int ncarry;
-    carry *cv = find_carries(J, nmap, &ncarry);
+    carry *cv = hl_jit_find_carries(J->t, J->read, nmap, &ncarry);
     carry_start(J, cv, ncarry);
     gcc_jit_block_add_assignment(entry, NULL, k, gcc_jit_context_zero(c, lng));
     if (watch)
@@ -385,7 +379,7 @@ static void build_loop(jit *J, int watch)
         body, done);
     J->blk = body;
     for (int i = 0; i < t->ncode; i++) {
-        int cj = carried(cv, ncarry, i);
+        int cj = hl_jit_carried(cv, ncarry, i);
         if (cj >= 0)
             carry_use(J, &cv[cj]);
         else

@@ -62,5 +62,19 @@ void hl_jit_assign(jit *J, int d, gcc_jit_rvalue *v);
 /* One instruction into J->blk, as the interpreter (eval.c) computes it. */
 void hl_jit_emit(jit *J, const hl_instr *i);
 
+/* Loop-carried values (jit_eval.c; the scalar and the lane loops): an
+ * instruction on an input fed back (sin q) whose twin is the same op on
+ * the output fed back to it (sin Q) takes, from the second step on, the
+ * twin's value of the step before (the same bits). */
+typedef struct carry {
+    int i, twin;           /* instruction indices in t->code */
+    gcc_jit_lvalue *d, *x; /* the carried values (x: the aux, e.g. cos) */
+} carry;
+/* The carries of t with nmap inputs fed back (malloc'd, *n of them);
+ * marks the twins' registers in read where the carried ones are. */
+carry *hl_jit_find_carries(const hl_tape *t, unsigned char *read, int nmap, int *n);
+/* cv's index whose instruction is k, or -1. */
+int hl_jit_carried(const carry *cv, int n, int k);
+
 #endif
 #endif

@@ -19,7 +19,7 @@
  * finds which lane it was and lets the others go on.
  *
  * NOTE: the loop-carried calls (sin Q of one step is sin q of the next,
- * Störmer–Verlet's two kicks) are found as jit_eval.c's find_carries finds
+ * Störmer–Verlet's two kicks) are found as jit_eval.c's hl_jit_find_carries finds
  * them; the search is repeated here rather than shared so that the scalar
  * loop's file stays as it is. */
 #include <math.h>
@@ -237,51 +237,7 @@ static void emit(lem *E, const hl_instr *i)
     hl_rule_of(i->op)->point(&E->em);
 }
 
-/* ---- loop-carried calls (as jit_eval.c's find_carries) -------------------------- */
-
-typedef struct carry {
-    int i, twin;           /* instruction indices in t->code */
-    gcc_jit_lvalue *d, *x; /* the carried values (x: the aux, e.g. cos) */
-} carry;
-
-static int carried_op(int op)
-{
-    return op == HL_OP_POWK || (op >= HL_OP_SQRT && op <= HL_OP_ACOS);
-}
-
-/* An instruction on an input that is fed back (sin q) whose twin is the
- * same op on the output fed back to it (sin Q): from the second step on
- * its value is the twin's of the step before, the same bits. */
-static carry *find_carries(lem *E, int nmap, int *n)
-{
-    const hl_tape *t = E->t;
-    carry *cv = hl_xmalloc((size_t)(t->ncode + 1) * sizeof *cv);
-    *n = 0;
-    for (int k = 0; k < t->ncode; k++) {
-        const hl_instr *i = &t->code[k];
-        if (!carried_op(i->op) || i->a < 0 || i->a >= nmap || t->outreg[i->a] == i->a)
-            continue;
-        for (int k2 = 0; k2 < t->ncode; k2++) {
-            const hl_instr *w = &t->code[k2];
-            if (k2 == k || w->op != i->op || w->b != i->b || w->a != t->outreg[i->a])
-                continue;
-            E->read[w->d] |= E->read[i->d];
-            if (w->x >= 0)
-                E->read[w->x] |= E->read[i->x];
-            cv[(*n)++] = (carry){k, k2, NULL, NULL};
-            break;
-        }
-    }
-    return cv;
-}
-
-static int carried(const carry *cv, int n, int k)
-{
-    for (int j = 0; j < n; j++)
-        if (cv[j].i == k)
-            return j;
-    return -1;
-}
+/* ---- loop-carried calls (jit_eval.c's hl_jit_find_carries) ---------------------- */
 
 static gcc_jit_lvalue *vlocal(lem *E, const char *prefix, int j)
 {
@@ -445,7 +401,7 @@ static void loop_body(lem *E, const loop *P, const carry *cv, int ncarry)
 {
     const hl_tape *t = E->t;
     for (int i = 0; i < t->ncode; i++) {
-        int cj = carried(cv, ncarry, i);
+        int cj = hl_jit_carried(cv, ncarry, i);
         if (cj >= 0)
             carry_use(E, &cv[cj]);
         else
@@ -477,7 +433,7 @@ static void build_loop(lem *E)
     gcc_jit_block *done = gcc_jit_function_new_block(E->fun, "done");
     E->blk = entry;
     int ncarry;
-    carry *cv = find_carries(E, nmap, &ncarry);
+    carry *cv = hl_jit_find_carries(E->t, E->read, nmap, &ncarry);
     loop_entry(E, &P, cv, ncarry);
     gcc_jit_block_end_with_jump(entry, NULL, cond);
     gcc_jit_block_end_with_conditional(
