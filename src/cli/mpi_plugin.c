@@ -149,7 +149,8 @@ static long unpack_arrays(const unsigned char *p, size_t at, size_t n, const cli
             u->v[k] = v;
             u->cap[k] = len;
         }
-        memcpy(u->v[k], p + at, len * sizeof(double));
+        if (len > 0) /* u->v[k] may still be NULL */
+            memcpy(u->v[k], p + at, len * sizeof(double));
         at += len * sizeof(double);
         r->nrows[k] = (long)rows;
         r->array[k] = u->v[k];
