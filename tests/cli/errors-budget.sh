@@ -67,12 +67,17 @@ while read -r name order restricted; do
             timed 2 errors -H "${!sys}" --scheme "$name" --order 6 --json
             continue
         fi
-        timed 0 errors -H "${!sys}" --scheme "$name" --order 6 --json || continue
         # Itoh-Abe with one degree of freedom and H = T(p) + V(q) is the
         # symmetric discrete gradient (Q-q)/D = (T(P)-T(p))/(P-p),
         # (P-p)/D = -(V(Q)-V(q))/(Q-q): order 2.
         want=$order
         [ "$name" = itoh-abe ] && { [ $sys = MORSE ] || [ $sys = PENDULUM ]; } && want=2
+        # Kepler to one order past the scheme's, where its leading error
+        # shows: order 6 costs RK4 alone 10-25 s of CI's 20 minutes (the
+        # other systems go to order 6 in under a second or two)
+        upto=6
+        [ $sys = KEPLER ] && [ "$want" != exact ] && [ "$want" -lt 6 ] && upto=$((want + 1))
+        timed 0 errors -H "${!sys}" --scheme "$name" --order $upto --json || continue
         py "
 want = $want
 if want >= 6:

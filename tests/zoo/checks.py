@@ -316,7 +316,8 @@ def check_two_ways(ctx, s, label, point, schemes):
 
 # ---- SymPy as the truth: generator, Lie series ----------------------------
 
-def check_sympy(ctx, s, points, order=4):
+def check_sympy(ctx, s, points):
+    order = s["lie_order"]
     z, f = truth.vector_field(s)
     loc = truth.symbols_of(s)
     g = ctx.hamlie("generator", *common_args(s), "--json")
