@@ -25,58 +25,102 @@
 #include "rules/rule.h"
 #include "tape/prog_ops.h"
 
-/* ---- the known terms, one at a time ----------------------------------------- */
+/* ---- the known terms, two lanes at a time ------------------------------------ */
 
-/* The i-th known term (j = jh - i), from the op's starts (prog_ops.h: mop):
- * x[j] = a[3 - i], w[j] = c[3 - i], y[k-j] = b[i]. */
-#define T_PLAIN(i) (a[3 - (i)] * b[i])
-#define T_TABLE(i) (c[3 - (i)] * a[3 - (i)] * b[i])
-#define T_SECOND(i) (c[3 - (i)] * a[3 - (i)] * z[i])
+/* Without AVX2 the four lanes are two pairs (l0, l1) and (l2, l3) of a
+ * 16-byte vector (GCC's generic vectors: SSE2 on every x86-64, two scalar
+ * operations elsewhere), each element rounded as its scalar operation, so
+ * the bits are the scalar lanes'.  The terms (prog_ops.h: mop) are
+ * x[j] = a[3 - i], w[j] = c[3 - i], y[k-j] = b[i] for the i-th of four:
+ * a pair of x's (or w's) is loaded as it lies and swapped, y's as they lie.
+ * The last 1..3 terms: a pair for two, one term into its lane alone
+ * (nothing past the terms is read). */
+typedef double v2 __attribute__((vector_size(16)));
 
-/* out = the sum of the n known terms (-0 when there are none): the i-th
- * term into lane i mod 4, lanes added as rule.h says. */
-#define KNOWN_SUM(out, TERM)                                                                       \
-    do {                                                                                           \
-        double l0 = -0.0, l1 = -0.0, l2 = -0.0, l3 = -0.0;                                         \
-        int i = 0;                                                                                 \
-        for (; i + 4 <= n; i += 4)                                                                 \
-            l0 += TERM(i), l1 += TERM(i + 1), l2 += TERM(i + 2), l3 += TERM(i + 3);                \
-        if (i < n)                                                                                 \
-            l0 += TERM(i);                                                                         \
-        if (i + 1 < n)                                                                             \
-            l1 += TERM(i + 1);                                                                     \
-        if (i + 2 < n)                                                                             \
-            l2 += TERM(i + 2);                                                                     \
-        out = (l0 + l1) + (l2 + l3);                                                               \
-    } while (0)
+static inline v2 v2_at(const double *p)
+{
+    v2 v;
+    memcpy(&v, p, sizeof v);
+    return v;
+}
+#define V2_SWAPPED(v) __builtin_shufflevector(v, v, 1, 0)
+#define V2_NEG0 ((v2){-0.0, -0.0})
+
+/* (l0 + l1) + (l2 + l3), as the AVX2 loop adds its lanes */
+static inline double pairs_added(v2 lo, v2 hi)
+{
+    return (lo[0] + lo[1]) + (hi[0] + hi[1]);
+}
 
 static inline double known_plain(const mop *o)
 {
-    const double *a = o->a, *b = o->b;
+    const double *x = o->a, *y = o->b;
     const int n = o->arg;
-    double s;
-    KNOWN_SUM(s, T_PLAIN);
-    return s;
+    v2 lo = V2_NEG0, hi = V2_NEG0;
+    int i = 0;
+    for (; i + 4 <= n; i += 4, x -= 4, y += 4) {
+        lo += V2_SWAPPED(v2_at(x + 2)) * v2_at(y);
+        hi += V2_SWAPPED(v2_at(x)) * v2_at(y + 2);
+    }
+    const int r = n - i;
+    if (r >= 2)
+        lo += V2_SWAPPED(v2_at(x + 2)) * v2_at(y);
+    if (r == 1)
+        lo[0] += x[3] * y[0];
+    if (r == 3)
+        hi[0] += x[1] * y[2];
+    return pairs_added(lo, hi);
 }
 
 static inline double known_table(const mop *o)
 {
-    const double *a = o->a, *b = o->b, *c = o->c;
+    const double *x = o->a, *y = o->b, *w = o->c;
     const int n = o->arg;
-    double s;
-    KNOWN_SUM(s, T_TABLE);
-    return s;
+    v2 lo = V2_NEG0, hi = V2_NEG0;
+    int i = 0;
+    for (; i + 4 <= n; i += 4, x -= 4, y += 4, w -= 4) {
+        lo += V2_SWAPPED(v2_at(w + 2) * v2_at(x + 2)) * v2_at(y);
+        hi += V2_SWAPPED(v2_at(w) * v2_at(x)) * v2_at(y + 2);
+    }
+    const int r = n - i;
+    if (r >= 2)
+        lo += V2_SWAPPED(v2_at(w + 2) * v2_at(x + 2)) * v2_at(y);
+    if (r == 1)
+        lo[0] += (w[3] * x[3]) * y[0];
+    if (r == 3)
+        hi[0] += (w[1] * x[1]) * y[2];
+    return pairs_added(lo, hi);
 }
 
-/* Both known sums of a pair (mconv); the second's left in its known. */
+/* Both known sums of a pair (mconv), w[j] x[j] read and multiplied once;
+ * the second's left in its known. */
 static double known_pair(const mop *o)
 {
-    const double *a = o->a, *b = o->b, *c = o->c, *z = o->m->z;
+    const double *x = o->a, *y = o->b, *w = o->c, *z = o->m->z;
     const int n = o->arg;
-    double s;
-    KNOWN_SUM(o->m->second->known, T_SECOND);
-    KNOWN_SUM(s, T_TABLE);
-    return s;
+    v2 lo = V2_NEG0, hi = V2_NEG0, lo2 = V2_NEG0, hi2 = V2_NEG0;
+    int i = 0;
+    for (; i + 4 <= n; i += 4, x -= 4, y += 4, z += 4, w -= 4) {
+        v2 wx_lo = V2_SWAPPED(v2_at(w + 2) * v2_at(x + 2));
+        v2 wx_hi = V2_SWAPPED(v2_at(w) * v2_at(x));
+        lo += wx_lo * v2_at(y), hi += wx_hi * v2_at(y + 2);
+        lo2 += wx_lo * v2_at(z), hi2 += wx_hi * v2_at(z + 2);
+    }
+    const int r = n - i;
+    if (r >= 2) {
+        v2 wx_lo = V2_SWAPPED(v2_at(w + 2) * v2_at(x + 2));
+        lo += wx_lo * v2_at(y), lo2 += wx_lo * v2_at(z);
+    }
+    if (r == 1) {
+        double wx = w[3] * x[3];
+        lo[0] += wx * y[0], lo2[0] += wx * z[0];
+    }
+    if (r == 3) {
+        double wx = w[1] * x[1];
+        hi[0] += wx * y[2], hi2[0] += wx * z[2];
+    }
+    o->m->second->known = pairs_added(lo2, hi2);
+    return pairs_added(lo, hi);
 }
 
 /* ---- the known terms, four at a time ----------------------------------------- */
