@@ -1,7 +1,8 @@
 /* The double interpreter's loop, included twice by prog_run.c: once with
  * the scalar sums of the known terms, once with the vector ones (AVX2).
  * Before including: RUN (the function's name), RUN_TARGET (its target
- * attribute), KNOWN_PLAIN, KNOWN_TABLE, KNOWN_PAIR (the sums). */
+ * attribute), KNOWN_PLAIN, KNOWN_TABLE, KNOWN_PAIR (the sums), FMA (fma or
+ * its scalar stand-in, prog_fma.h). */
 
 #define CAT_(a, b) a##b
 #define CAT(a, b) CAT_(a, b)
@@ -57,7 +58,7 @@ div:
     *o->d = *o->a / *o->b;
     NEXT();
 fma_:
-    *o->d = fma(*o->a, *o->b, *o->c);
+    *o->d = FMA(*o->a, *o->b, *o->c);
     NEXT();
 call_:
     *o->d = hl_pfn_eval(o->arg, *o->a, *o->b);
@@ -94,7 +95,7 @@ ode_:
         return;
     NEXT();
 divide:
-    *o->d = fma(*o->a, *o->b, *o->a * *o->c);
+    *o->d = FMA(*o->a, *o->b, *o->a * *o->c);
     NEXT();
 end:
     if (++k < kend) { /* the next coefficient's program, in the same call */
@@ -112,3 +113,4 @@ end:
 #undef KNOWN_PLAIN
 #undef KNOWN_TABLE
 #undef KNOWN_PAIR
+#undef FMA

@@ -14,15 +14,19 @@
  * lane i of the vector is lane i of rule.h, and a vector product or sum is
  * four IEEE operations each rounded as its scalar one (AVX2 has no fused
  * multiply-add, so none is contracted), so the bits are those of the
- * scalar lanes in about a third of the instructions.  The loop
- * (prog_loop.h) is compiled twice, with the vector sums and with the
- * scalar ones, and the processor picks. */
+ * scalar lanes in about a third of the instructions.  Without AVX2 they
+ * are two pairs of 16-byte vectors (SSE2), the same bits again.  The loop
+ * (prog_loop.h) is compiled three times, and the processor picks: with the
+ * AVX2 sums; with the two-lane sums and libm's fma (a processor with FMA
+ * but not AVX2); with the two-lane sums and prog_fma.h's exact stand-in
+ * for fma (a processor without FMA, where libm's fma is a slow emulation). */
 #define _GNU_SOURCE /* sincos */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "rules/rule.h"
+#include "tape/prog_fma.h"
 #include "tape/prog_ops.h"
 
 /* ---- the known terms, two lanes at a time ------------------------------------ */
@@ -292,6 +296,15 @@ static inline __attribute__((always_inline)) void conv_post(const mconv *m, doub
 #define KNOWN_PLAIN known_plain
 #define KNOWN_TABLE known_table
 #define KNOWN_PAIR known_pair
+#define FMA fma
+#include "tape/prog_loop.h"
+
+#define RUN run_no_fma
+#define RUN_TARGET
+#define KNOWN_PLAIN known_plain
+#define KNOWN_TABLE known_table
+#define KNOWN_PAIR known_pair
+#define FMA prog_fma
 #include "tape/prog_loop.h"
 
 #if HAVE_VEC
@@ -300,30 +313,57 @@ static inline __attribute__((always_inline)) void conv_post(const mconv *m, doub
 #define KNOWN_PLAIN known_plain_vec
 #define KNOWN_TABLE known_table_vec
 #define KNOWN_PAIR known_pair_vec
+#define FMA fma
 #include "tape/prog_loop.h"
 #endif
 
-/* HAMLIE_NO_AVX2=1 (any value but empty or "0") in the environment runs the
- * scalar loop on processors that have AVX2 too, so that the tests cover the
- * path of the processors without it (tests/CMakeLists: the "-scalar"
- * tests).  Read once: a program's loop is chosen when it is bound. */
+/* Whether the environment variable name is set to anything but empty or
+ * "0".  Read once per name: a program's loop is chosen when it is bound. */
+static int env_set(const char *name, int *cache)
+{
+    /* threads may race here: all write the same value */
+    int v = __atomic_load_n(cache, __ATOMIC_RELAXED);
+    if (v < 0) {
+        const char *s = getenv(name);
+        v = s != NULL && s[0] != '\0' && strcmp(s, "0") != 0;
+        __atomic_store_n(cache, v, __ATOMIC_RELAXED);
+    }
+    return v;
+}
+
+/* HAMLIE_NO_AVX2=1 runs a scalar loop on processors that have AVX2 too, and
+ * HAMLIE_NO_FMA=1 the one of processors without FMA (and so without the
+ * AVX2 loop, which has the fma instruction), so that the tests cover the
+ * paths of the processors without them (CMakeLists.txt: the "-scalar"
+ * tests). */
+#if HAVE_VEC
 static int avx2_allowed(void)
 {
-    static int allowed = -1; /* threads may race here: all write the same value */
-    int a = __atomic_load_n(&allowed, __ATOMIC_RELAXED);
-    if (a < 0) {
-        const char *no = getenv("HAMLIE_NO_AVX2");
-        a = no == NULL || no[0] == '\0' || strcmp(no, "0") == 0;
-        __atomic_store_n(&allowed, a, __ATOMIC_RELAXED);
-    }
-    return a;
+    static int no = -1;
+    return !env_set("HAMLIE_NO_AVX2", &no);
+}
+#endif
+
+static int fma_allowed(void)
+{
+    static int no = -1;
+    if (env_set("HAMLIE_NO_FMA", &no))
+        return 0;
+#if defined(__x86_64__) && defined(__GNUC__)
+    return __builtin_cpu_supports("fma");
+#elif defined(FP_FAST_FMA)
+    return 1;
+#else
+    return 0;
+#endif
 }
 
 void hl_prog_bind(hl_prog *p)
 {
-    void (*run)(const hl_prog *, int, int, int, const void *const **) = run_scalar;
+    void (*run)(const hl_prog *, int, int, int, const void *const **) =
+        fma_allowed() ? run_scalar : run_no_fma;
 #if HAVE_VEC
-    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && avx2_allowed())
+    if (run == run_scalar && __builtin_cpu_supports("avx2") && avx2_allowed())
         run = run_vec;
 #endif
     const void *const *go;
@@ -335,7 +375,11 @@ void hl_prog_bind(hl_prog *p)
 
 const char *hl_prog_loop(const hl_prog *p)
 {
-    return p->run == run_scalar ? "scalar" : "avx2";
+#if HAVE_VEC
+    if (p->run == run_vec)
+        return "avx2";
+#endif
+    return "scalar";
 }
 
 void hl_prog_run(const hl_prog *p, int k)
