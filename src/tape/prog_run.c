@@ -291,12 +291,17 @@ static inline __attribute__((always_inline)) void conv_post(const mconv *m, doub
 
 /* ---- the loop ------------------------------------------------------------------ */
 
+/* M_DIVIDE2, the ODE step of two outputs, with the fma instruction */
+#define FMA_ODE2_BY(fma_, d0, d1, f0, f1, hi, lo)                                                  \
+    (*(d0) = fma_(f0, hi, (f0) * (lo)), *(d1) = fma_(f1, hi, (f1) * (lo)))
+
 #define RUN run_scalar
 #define RUN_TARGET
 #define KNOWN_PLAIN known_plain
 #define KNOWN_TABLE known_table
 #define KNOWN_PAIR known_pair
 #define FMA fma
+#define FMA_ODE2(d0, d1, f0, f1, hi, lo) FMA_ODE2_BY(fma, d0, d1, f0, f1, hi, lo)
 #include "tape/prog_loop.h"
 
 #define RUN run_no_fma
@@ -305,6 +310,7 @@ static inline __attribute__((always_inline)) void conv_post(const mconv *m, doub
 #define KNOWN_TABLE known_table
 #define KNOWN_PAIR known_pair
 #define FMA prog_fma
+#define FMA_ODE2(d0, d1, f0, f1, hi, lo) FMA_ODE2_BY(prog_fma, d0, d1, f0, f1, hi, lo)
 #include "tape/prog_loop.h"
 
 #if HAVE_VEC
@@ -314,6 +320,7 @@ static inline __attribute__((always_inline)) void conv_post(const mconv *m, doub
 #define KNOWN_TABLE known_table_vec
 #define KNOWN_PAIR known_pair_vec
 #define FMA fma
+#define FMA_ODE2(d0, d1, f0, f1, hi, lo) FMA_ODE2_BY(fma, d0, d1, f0, f1, hi, lo)
 #include "tape/prog_loop.h"
 #endif
 
