@@ -11,6 +11,12 @@
 #   cc -O2 bench/taylor_interp.c -I /tmp/old/include /tmp/old/build/libhamlie.a \
 #     -lflint-arb -lflint -lmpfr -lgmp -lgccjit -lm -ldl -o /tmp/interp-old
 # The scalar loop of a build: a wrapper that sets HAMLIE_NO_AVX2=1.
+# The loop of a processor without AVX2 and FMA (most without AVX2), glibc's
+# libm included (its fma is then a slow emulation; sin, cos the SSE2 ones):
+#   HAMLIE_NO_AVX2=1 HAMLIE_NO_FMA=1 \
+#   GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2_Usable,-FMA_Usable,-AVX2,-FMA,-FMA4 \
+#   bench/run-interp.sh --so ...
+# (a build that reads neither variable, as a4ae1ce, still gets that libm).
 #
 # Steadier on a loaded machine: the builds' shared libraries in ONE process,
 # taking turns round by round (a change of load or clock hits all alike):

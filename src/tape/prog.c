@@ -232,17 +232,34 @@ static hl_ev emit_v(rec *r, int code, int arg, hl_ev a, hl_ev b, hl_ev c)
     return ev_loc(l >= 0 ? l : emit(r, code, arg, la, lb, lc)->d);
 }
 
-static long rec_const(rec *r, double v)
+static long const_append(rec *r, double v)
 {
-    for (int i = 0; i < r->nconst; i++)
-        if (memcmp(&r->consts[i], &v, sizeof v) == 0)
-            return LOC(SP_CONST, i);
     if (r->nconst == r->constcap) {
         r->constcap = r->constcap ? 2 * r->constcap : 32;
         r->consts = hl_xrealloc(r->consts, (size_t)r->constcap * sizeof *r->consts);
     }
     r->consts[r->nconst] = v;
     return LOC(SP_CONST, r->nconst++);
+}
+
+static long rec_const(rec *r, double v)
+{
+    for (int i = 0; i < r->nconst; i++)
+        if (memcmp(&r->consts[i], &v, sizeof v) == 0)
+            return LOC(SP_CONST, i);
+    return const_append(r, v);
+}
+
+/* v, w in two adjacent constants (M_DIVIDE2 reads hi, lo as b[0], b[1]) */
+static long rec_const_pair(rec *r, double v, double w)
+{
+    for (int i = 0; i + 1 < r->nconst; i++)
+        if (memcmp(&r->consts[i], &v, sizeof v) == 0 &&
+            memcmp(&r->consts[i + 1], &w, sizeof w) == 0)
+            return LOC(SP_CONST, i);
+    long l = const_append(r, v);
+    const_append(r, w);
+    return l;
 }
 
 static hl_ev rec_num(hl_em *e, long p, long q)
@@ -608,7 +625,8 @@ static void rec_init(rec *r, const hl_tape *t)
  * fma(f, hi, f lo), hi + lo = 1/(k+1), f * hi when lo is 0, as the compiled
  * code does (rule.h, hl_rule_recip_split): a division is slow, a product by
  * a rounded 1/(k+1) alone drifts the phase.  Behind M_ODE, so that a plain
- * run stops before it.  Output i feeds input i, which is register i. */
+ * run stops before it.  Output i feeds input i, which is register i; two
+ * outputs at a time are one M_DIVIDE2 (a dispatch less). */
 static void rec_ode_step(rec *r, const hl_tape *t, int k, int S)
 {
     double hi, lo;
@@ -617,10 +635,20 @@ static void rec_ode_step(rec *r, const hl_tape *t, int k, int S)
     r->ntemp = 0;
     emit(r, M_ODE, 0, 0, 0, 0)->d = LOC(SP_REG, 0);
     long lhi = rec_const(r, hi), llo = rec_const(r, lo);
+    long lpair = lo == 0 ? -1 : rec_const_pair(r, hi, lo);
     for (int i = 0; i < t->nout; i++) {
-        long f = LOC(SP_REG, (long)t->outreg[i] * S + k);
-        rop *o = lo == 0 ? emit(r, M_MUL, 0, f, lhi, f) : emit(r, M_DIVIDE, 0, f, lhi, llo);
-        o->d = LOC(SP_REG, (long)i * S + k + 1);
+        long f = LOC(SP_REG, (long)t->outreg[i] * S + k), d = LOC(SP_REG, (long)i * S + k + 1);
+        rop *o;
+        if (lo == 0) {
+            o = emit(r, M_MUL, 0, f, lhi, f);
+        } else if (i + 1 < t->nout) { /* outputs i and i + 1: z_i[k+1] and S further */
+            long f1 = LOC(SP_REG, (long)t->outreg[i + 1] * S + k);
+            o = emit(r, M_DIVIDE2, S, f, lpair, f1);
+            i++;
+        } else {
+            o = emit(r, M_DIVIDE, 0, f, lhi, llo);
+        }
+        o->d = d;
     }
 }
 

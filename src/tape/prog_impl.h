@@ -39,7 +39,8 @@ void hl_prog_run_ode(const hl_prog *p, int kend);
 
 void hl_prog_free(hl_prog *p); /* NULL is a no-op */
 
-/* The loop that runs p: "avx2" or "scalar" (prog_run.c, HAMLIE_NO_AVX2). */
+/* The loop that runs p: "avx2" or "scalar" (either scalar one: with the
+ * fma instruction or without; prog_run.c, HAMLIE_NO_AVX2, HAMLIE_NO_FMA). */
 const char *hl_prog_loop(const hl_prog *p);
 
 #endif /* HAMLIE_TAPE_PROG_IMPL_H */

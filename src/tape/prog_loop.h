@@ -1,7 +1,8 @@
 /* The double interpreter's loop, included twice by prog_run.c: once with
  * the scalar sums of the known terms, once with the vector ones (AVX2).
  * Before including: RUN (the function's name), RUN_TARGET (its target
- * attribute), KNOWN_PLAIN, KNOWN_TABLE, KNOWN_PAIR (the sums). */
+ * attribute), KNOWN_PLAIN, KNOWN_TABLE, KNOWN_PAIR (the sums), FMA (fma or
+ * its scalar stand-in, prog_fma.h) and FMA_ODE2 (M_DIVIDE2's two). */
 
 #define CAT_(a, b) a##b
 #define CAT(a, b) CAT_(a, b)
@@ -29,7 +30,7 @@ static RUN_TARGET void RUN(const hl_prog *p, int k, int kend, int ode, const voi
     static const void *const go[] = {&&mov,     &&neg,    &&add,    &&sub,     &&mul,
                                      &&div,     &&fma_,   &&call_,  &&sincos_, &&conv_,
                                      &&conv_t,  &&conv_w, &&conv_p, &&conv_l,  &&conv_0,
-                                     &&conv_t0, &&ode_,   &&divide, &&end};
+                                     &&conv_t0, &&ode_,   &&divide, &&divide2, &&end};
     _Static_assert(sizeof go / sizeof *go == M_END + 1, "a handler per mcode");
     if (p == NULL) {
         *labels = go;
@@ -57,7 +58,7 @@ div:
     *o->d = *o->a / *o->b;
     NEXT();
 fma_:
-    *o->d = fma(*o->a, *o->b, *o->c);
+    *o->d = FMA(*o->a, *o->b, *o->c);
     NEXT();
 call_:
     *o->d = hl_pfn_eval(o->arg, *o->a, *o->b);
@@ -94,8 +95,13 @@ ode_:
         return;
     NEXT();
 divide:
-    *o->d = fma(*o->a, *o->b, *o->a * *o->c);
+    *o->d = FMA(*o->a, *o->b, *o->a * *o->c);
     NEXT();
+divide2 : {
+    const double f0 = *o->a, f1 = *o->c, hi = o->b[0], lo = o->b[1];
+    FMA_ODE2(o->d, o->d + o->arg, f0, f1, hi, lo);
+    NEXT();
+}
 end:
     if (++k < kend) { /* the next coefficient's program, in the same call */
         o = p->op + p->start[k];
@@ -112,3 +118,5 @@ end:
 #undef KNOWN_PLAIN
 #undef KNOWN_TABLE
 #undef KNOWN_PAIR
+#undef FMA
+#undef FMA_ODE2

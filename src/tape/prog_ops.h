@@ -23,9 +23,10 @@ typedef enum mcode {
     M_CONV_LANES, /* a partner: its known sum is done already */
     M_CONV_BARE,  /* M_CONV_PLAIN, M_CONV_TABLE without post-operations */
     M_CONV_TABLE_BARE,
-    M_ODE,    /* a plain run (hl_prog_run) ends here; an ODE run goes on */
-    M_DIVIDE, /* *d = fma(*a, *b, *a * *c): the ODE step f/(k+1), b + c = 1/(k+1) */
-    M_END     /* closes the program of each coefficient */
+    M_ODE,     /* a plain run (hl_prog_run) ends here; an ODE run goes on */
+    M_DIVIDE,  /* *d = fma(*a, *b, *a * *c): the ODE step f/(k+1), b + c = 1/(k+1) */
+    M_DIVIDE2, /* the same for two outputs: *d from *a, d[arg] from *c; hi, lo = b[0], b[1] */
+    M_END      /* closes the program of each coefficient */
 } mcode;
 
 /* How a convolution's known terms read: x[j] y[k-j], or (w[j] x[j]) y[k-j]

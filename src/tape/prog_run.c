@@ -14,69 +14,117 @@
  * lane i of the vector is lane i of rule.h, and a vector product or sum is
  * four IEEE operations each rounded as its scalar one (AVX2 has no fused
  * multiply-add, so none is contracted), so the bits are those of the
- * scalar lanes in about a third of the instructions.  The loop
- * (prog_loop.h) is compiled twice, with the vector sums and with the
- * scalar ones, and the processor picks. */
+ * scalar lanes in about a third of the instructions.  Without AVX2 they
+ * are two pairs of 16-byte vectors (SSE2), the same bits again.  The loop
+ * (prog_loop.h) is compiled three times, and the processor picks: with the
+ * AVX2 sums; with the two-lane sums and libm's fma (a processor with FMA
+ * but not AVX2); with the two-lane sums and prog_fma.h's exact stand-in
+ * for fma (a processor without FMA, where libm's fma is a slow emulation). */
 #define _GNU_SOURCE /* sincos */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "rules/rule.h"
+#include "tape/prog_fma.h"
 #include "tape/prog_ops.h"
 
-/* ---- the known terms, one at a time ----------------------------------------- */
+/* ---- the known terms, two lanes at a time ------------------------------------ */
 
-/* The i-th known term (j = jh - i), from the op's starts (prog_ops.h: mop):
- * x[j] = a[3 - i], w[j] = c[3 - i], y[k-j] = b[i]. */
-#define T_PLAIN(i) (a[3 - (i)] * b[i])
-#define T_TABLE(i) (c[3 - (i)] * a[3 - (i)] * b[i])
-#define T_SECOND(i) (c[3 - (i)] * a[3 - (i)] * z[i])
+/* Without AVX2 the four lanes are two pairs (l0, l1) and (l2, l3) of a
+ * 16-byte vector (GCC's generic vectors: SSE2 on every x86-64, two scalar
+ * operations elsewhere), each element rounded as its scalar operation, so
+ * the bits are the scalar lanes'.  The terms (prog_ops.h: mop) are
+ * x[j] = a[3 - i], w[j] = c[3 - i], y[k-j] = b[i] for the i-th of four:
+ * a pair of x's (or w's) is loaded as it lies and swapped, y's as they lie.
+ * The last 1..3 terms: a pair for two, one term into its lane alone
+ * (nothing past the terms is read). */
+typedef double v2 __attribute__((vector_size(16)));
 
-/* out = the sum of the n known terms (-0 when there are none): the i-th
- * term into lane i mod 4, lanes added as rule.h says. */
-#define KNOWN_SUM(out, TERM)                                                                       \
-    do {                                                                                           \
-        double l0 = -0.0, l1 = -0.0, l2 = -0.0, l3 = -0.0;                                         \
-        int i = 0;                                                                                 \
-        for (; i + 4 <= n; i += 4)                                                                 \
-            l0 += TERM(i), l1 += TERM(i + 1), l2 += TERM(i + 2), l3 += TERM(i + 3);                \
-        if (i < n)                                                                                 \
-            l0 += TERM(i);                                                                         \
-        if (i + 1 < n)                                                                             \
-            l1 += TERM(i + 1);                                                                     \
-        if (i + 2 < n)                                                                             \
-            l2 += TERM(i + 2);                                                                     \
-        out = (l0 + l1) + (l2 + l3);                                                               \
-    } while (0)
+static inline v2 v2_at(const double *p)
+{
+    v2 v;
+    memcpy(&v, p, sizeof v);
+    return v;
+}
+#define V2_SWAPPED(v) __builtin_shufflevector(v, v, 1, 0)
+#define V2_NEG0 ((v2){-0.0, -0.0})
+
+/* (l0 + l1) + (l2 + l3), as the AVX2 loop adds its lanes */
+static inline double pairs_added(v2 lo, v2 hi)
+{
+    return (lo[0] + lo[1]) + (hi[0] + hi[1]);
+}
 
 static inline double known_plain(const mop *o)
 {
-    const double *a = o->a, *b = o->b;
+    const double *x = o->a, *y = o->b;
     const int n = o->arg;
-    double s;
-    KNOWN_SUM(s, T_PLAIN);
-    return s;
+    v2 lo = V2_NEG0, hi = V2_NEG0;
+    int i = 0;
+    for (; i + 4 <= n; i += 4, x -= 4, y += 4) {
+        lo += V2_SWAPPED(v2_at(x + 2)) * v2_at(y);
+        hi += V2_SWAPPED(v2_at(x)) * v2_at(y + 2);
+    }
+    const int r = n - i;
+    if (r >= 2)
+        lo += V2_SWAPPED(v2_at(x + 2)) * v2_at(y);
+    if (r == 1)
+        lo[0] += x[3] * y[0];
+    if (r == 3)
+        hi[0] += x[1] * y[2];
+    return pairs_added(lo, hi);
 }
 
 static inline double known_table(const mop *o)
 {
-    const double *a = o->a, *b = o->b, *c = o->c;
+    const double *x = o->a, *y = o->b, *w = o->c;
     const int n = o->arg;
-    double s;
-    KNOWN_SUM(s, T_TABLE);
-    return s;
+    v2 lo = V2_NEG0, hi = V2_NEG0;
+    int i = 0;
+    for (; i + 4 <= n; i += 4, x -= 4, y += 4, w -= 4) {
+        lo += V2_SWAPPED(v2_at(w + 2) * v2_at(x + 2)) * v2_at(y);
+        hi += V2_SWAPPED(v2_at(w) * v2_at(x)) * v2_at(y + 2);
+    }
+    const int r = n - i;
+    if (r >= 2)
+        lo += V2_SWAPPED(v2_at(w + 2) * v2_at(x + 2)) * v2_at(y);
+    if (r == 1)
+        lo[0] += (w[3] * x[3]) * y[0];
+    if (r == 3)
+        hi[0] += (w[1] * x[1]) * y[2];
+    return pairs_added(lo, hi);
 }
 
-/* Both known sums of a pair (mconv); the second's left in its known. */
+/* Both known sums of a pair (mconv), w[j] x[j] read and multiplied once;
+ * the second's left in its known. */
 static double known_pair(const mop *o)
 {
-    const double *a = o->a, *b = o->b, *c = o->c, *z = o->m->z;
+    const double *x = o->a, *y = o->b, *w = o->c, *z = o->m->z;
     const int n = o->arg;
-    double s;
-    KNOWN_SUM(o->m->second->known, T_SECOND);
-    KNOWN_SUM(s, T_TABLE);
-    return s;
+    v2 lo = V2_NEG0, hi = V2_NEG0, lo2 = V2_NEG0, hi2 = V2_NEG0;
+    int i = 0;
+    for (; i + 4 <= n; i += 4, x -= 4, y += 4, z += 4, w -= 4) {
+        v2 wx_lo = V2_SWAPPED(v2_at(w + 2) * v2_at(x + 2));
+        v2 wx_hi = V2_SWAPPED(v2_at(w) * v2_at(x));
+        lo += wx_lo * v2_at(y), hi += wx_hi * v2_at(y + 2);
+        lo2 += wx_lo * v2_at(z), hi2 += wx_hi * v2_at(z + 2);
+    }
+    const int r = n - i;
+    if (r >= 2) {
+        v2 wx_lo = V2_SWAPPED(v2_at(w + 2) * v2_at(x + 2));
+        lo += wx_lo * v2_at(y), lo2 += wx_lo * v2_at(z);
+    }
+    if (r == 1) {
+        double wx = w[3] * x[3];
+        lo[0] += wx * y[0], lo2[0] += wx * z[0];
+    }
+    if (r == 3) {
+        double wx = w[1] * x[1];
+        hi[0] += wx * y[2], hi2[0] += wx * z[2];
+    }
+    o->m->second->known = pairs_added(lo2, hi2);
+    return pairs_added(lo, hi);
 }
 
 /* ---- the known terms, four at a time ----------------------------------------- */
@@ -243,11 +291,26 @@ static inline __attribute__((always_inline)) void conv_post(const mconv *m, doub
 
 /* ---- the loop ------------------------------------------------------------------ */
 
+/* M_DIVIDE2, the ODE step of two outputs, with the fma instruction */
+#define FMA_ODE2_BY(fma_, d0, d1, f0, f1, hi, lo)                                                  \
+    (*(d0) = fma_(f0, hi, (f0) * (lo)), *(d1) = fma_(f1, hi, (f1) * (lo)))
+
 #define RUN run_scalar
 #define RUN_TARGET
 #define KNOWN_PLAIN known_plain
 #define KNOWN_TABLE known_table
 #define KNOWN_PAIR known_pair
+#define FMA fma
+#define FMA_ODE2(d0, d1, f0, f1, hi, lo) FMA_ODE2_BY(fma, d0, d1, f0, f1, hi, lo)
+#include "tape/prog_loop.h"
+
+#define RUN run_no_fma
+#define RUN_TARGET
+#define KNOWN_PLAIN known_plain
+#define KNOWN_TABLE known_table
+#define KNOWN_PAIR known_pair
+#define FMA prog_fma
+#define FMA_ODE2(d0, d1, f0, f1, hi, lo) FMA_ODE2_BY(prog_fma, d0, d1, f0, f1, hi, lo)
 #include "tape/prog_loop.h"
 
 #if HAVE_VEC
@@ -256,30 +319,58 @@ static inline __attribute__((always_inline)) void conv_post(const mconv *m, doub
 #define KNOWN_PLAIN known_plain_vec
 #define KNOWN_TABLE known_table_vec
 #define KNOWN_PAIR known_pair_vec
+#define FMA fma
+#define FMA_ODE2(d0, d1, f0, f1, hi, lo) FMA_ODE2_BY(fma, d0, d1, f0, f1, hi, lo)
 #include "tape/prog_loop.h"
 #endif
 
-/* HAMLIE_NO_AVX2=1 (any value but empty or "0") in the environment runs the
- * scalar loop on processors that have AVX2 too, so that the tests cover the
- * path of the processors without it (tests/CMakeLists: the "-scalar"
- * tests).  Read once: a program's loop is chosen when it is bound. */
+/* Whether the environment variable name is set to anything but empty or
+ * "0".  Read once per name: a program's loop is chosen when it is bound. */
+static int env_set(const char *name, int *cache)
+{
+    /* threads may race here: all write the same value */
+    int v = __atomic_load_n(cache, __ATOMIC_RELAXED);
+    if (v < 0) {
+        const char *s = getenv(name);
+        v = s != NULL && s[0] != '\0' && strcmp(s, "0") != 0;
+        __atomic_store_n(cache, v, __ATOMIC_RELAXED);
+    }
+    return v;
+}
+
+/* HAMLIE_NO_AVX2=1 runs a scalar loop on processors that have AVX2 too, and
+ * HAMLIE_NO_FMA=1 the one of processors without FMA (and so without the
+ * AVX2 loop, which has the fma instruction), so that the tests cover the
+ * paths of the processors without them (CMakeLists.txt: the "-scalar"
+ * tests). */
+#if HAVE_VEC
 static int avx2_allowed(void)
 {
-    static int allowed = -1; /* threads may race here: all write the same value */
-    int a = __atomic_load_n(&allowed, __ATOMIC_RELAXED);
-    if (a < 0) {
-        const char *no = getenv("HAMLIE_NO_AVX2");
-        a = no == NULL || no[0] == '\0' || strcmp(no, "0") == 0;
-        __atomic_store_n(&allowed, a, __ATOMIC_RELAXED);
-    }
-    return a;
+    static int no = -1;
+    return !env_set("HAMLIE_NO_AVX2", &no);
+}
+#endif
+
+static int fma_allowed(void)
+{
+    static int no = -1;
+    if (env_set("HAMLIE_NO_FMA", &no))
+        return 0;
+#if defined(__x86_64__) && defined(__GNUC__)
+    return __builtin_cpu_supports("fma");
+#elif defined(FP_FAST_FMA)
+    return 1;
+#else
+    return 0;
+#endif
 }
 
 void hl_prog_bind(hl_prog *p)
 {
-    void (*run)(const hl_prog *, int, int, int, const void *const **) = run_scalar;
+    void (*run)(const hl_prog *, int, int, int, const void *const **) =
+        fma_allowed() ? run_scalar : run_no_fma;
 #if HAVE_VEC
-    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && avx2_allowed())
+    if (run == run_scalar && __builtin_cpu_supports("avx2") && avx2_allowed())
         run = run_vec;
 #endif
     const void *const *go;
@@ -291,7 +382,11 @@ void hl_prog_bind(hl_prog *p)
 
 const char *hl_prog_loop(const hl_prog *p)
 {
-    return p->run == run_scalar ? "scalar" : "avx2";
+#if HAVE_VEC
+    if (p->run == run_vec)
+        return "avx2";
+#endif
+    return "scalar";
 }
 
 void hl_prog_run(const hl_prog *p, int k)
