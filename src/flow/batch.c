@@ -50,7 +50,6 @@ struct hl_flow_batch {
     double *coef;         /* n * (p+1): one lane's coefficients, gathered */
     double *zt, *dz, *fz; /* n each: check_step's scratch */
     double *zo;           /* L * n: each lane's last output, contiguous */
-    double *pw;           /* HL_FLOW_POWERS(p) L: the steps' powers (flow_poly.h) */
     double eps;
     int check;
     int vec; /* the loops' build with FMA instructions (flow_poly.h) */
@@ -91,7 +90,6 @@ hl_status hl_flow_batch_new(hl_flow_batch **out, hl_tape *f, double atol, double
     b->fz = hl_xcalloc((size_t)b->n, sizeof *b->fz);
     b->zo = hl_xcalloc(nl, sizeof *b->zo);
     b->vec = hl_flow_vec_ok();
-    b->pw = hl_xcalloc(HL_FLOW_POWERS(p) * (size_t)lanes, sizeof *b->pw);
     *out = b;
     return HL_OK;
 }
@@ -143,7 +141,6 @@ void hl_flow_batch_free(hl_flow_batch *b)
     free(b->dz);
     free(b->fz);
     free(b->zo);
-    free(b->pw);
     hl_tape_batch_free(b->tb);
     free(b);
 }
@@ -163,40 +160,30 @@ int hl_flow_batch_compiled(const hl_flow_batch *b)
 
 /* flow.c's advance for every lane at once, lane l by its own step h[l]
  * (the same operations per lane; the lanes' loops are innermost, so that
- * the compiler runs them side by side: AL lanes, a constant).  H: room for
- * HL_FLOW_POWERS(p) AL, hl_flow_powers lane by lane at H[k AL + l]. */
-HL_FLOW_INLINE void advance_lanes(double *z, double *lo, double *H, const double *coef,
-                                  const double *h, int n, int p, const int AL)
+ * the compiler runs them side by side: AL lanes, a constant) */
+HL_FLOW_INLINE void advance_lanes(double *z, double *lo, const double *coef, const double *h, int n,
+                                  int p, const int AL)
 {
-    const int S = p + 1, r = p % 4;
-    double h4[HL_TAPE_BATCH_MAX_LANES];
-    for (int l = 0; l < AL; l++) { /* hl_flow_powers */
-        double h2 = h[l] * h[l];
-        h4[l] = h2 * h2;
-        H[l] = 1;
-        H[AL + l] = h[l];
-        H[2 * AL + l] = h2;
-        H[3 * AL + l] = h2 * h[l];
-    }
-    for (int k = 4; k <= p; k += 4)
-        for (int j = 0; j < 4; j++)
-            for (int l = 0; l < AL; l++)
-                H[(k + j) * AL + l] = H[(k + j - 4) * AL + l] * h4[l];
-    for (int i = 0; i < n; i++) { /* increment */
+    const int S = p + 1, top_e = p & ~1, top_o = (p - 1) | 1;
+    double h2[HL_TAPE_BATCH_MAX_LANES], e[HL_TAPE_BATCH_MAX_LANES], o[HL_TAPE_BATCH_MAX_LANES];
+    for (int l = 0; l < AL; l++)
+        h2[l] = h[l] * h[l];
+    for (int i = 0; i < n; i++) {
         const double *c = coef + (size_t)i * S * AL;
-        double a[4][HL_TAPE_BATCH_MAX_LANES] = {{0}}, inc[HL_TAPE_BATCH_MAX_LANES];
-        for (int k = p - 3; k > r; k -= 4)
-            for (int j = 0; j < 4; j++)
-                for (int l = 0; l < AL; l++)
-                    a[j][l] = fma(c[(k + j) * AL + l], H[(k + j) * AL + l], a[j][l]);
-        for (int l = 0; l < AL; l++)
-            inc[l] = ((a[3][l] + a[2][l]) + a[1][l]) + a[0][l];
-        for (int k = r; k >= 1; k--)
-            for (int l = 0; l < AL; l++)
-                inc[l] = fma(c[k * AL + l], H[k * AL + l], inc[l]);
         for (int l = 0; l < AL; l++) {
-            double x = c[l], b = inc[l] + lo[i * AL + l], s = x + b, bv = s - x;
-            lo[i * AL + l] = (x - (s - bv)) + (b - bv);
+            e[l] = c[top_e * AL + l];
+            o[l] = top_o <= p ? c[top_o * AL + l] : 0;
+        }
+        for (int k = top_e - 2; k >= 2; k -= 2)
+            for (int l = 0; l < AL; l++)
+                e[l] = fma(e[l], h2[l], c[k * AL + l]);
+        for (int k = top_o - 2; k >= 1; k -= 2)
+            for (int l = 0; l < AL; l++)
+                o[l] = fma(o[l], h2[l], c[k * AL + l]);
+        for (int l = 0; l < AL; l++) {
+            double a = c[l], b = fma(h[l], o[l], h2[l] * e[l]) + lo[i * AL + l], s = a + b,
+                   bv = s - a;
+            lo[i * AL + l] = (a - (s - bv)) + (b - bv);
             z[i * AL + l] = s;
         }
     }
@@ -208,19 +195,19 @@ static inline __attribute__((always_inline)) void advance_all(hl_flow_batch *b)
     memcpy(b->lonew, b->zlo, (size_t)b->n * b->L * sizeof *b->zlo);
     switch (b->L) { /* the lane count a constant: the loops become vectors */
     case 1:
-        advance_lanes(b->znew, b->lonew, b->pw, c, b->h, b->n, b->p, 1);
+        advance_lanes(b->znew, b->lonew, c, b->h, b->n, b->p, 1);
         break;
     case 2:
-        advance_lanes(b->znew, b->lonew, b->pw, c, b->h, b->n, b->p, 2);
+        advance_lanes(b->znew, b->lonew, c, b->h, b->n, b->p, 2);
         break;
     case 4:
-        advance_lanes(b->znew, b->lonew, b->pw, c, b->h, b->n, b->p, 4);
+        advance_lanes(b->znew, b->lonew, c, b->h, b->n, b->p, 4);
         break;
     case 8:
-        advance_lanes(b->znew, b->lonew, b->pw, c, b->h, b->n, b->p, 8);
+        advance_lanes(b->znew, b->lonew, c, b->h, b->n, b->p, 8);
         break;
     default:
-        advance_lanes(b->znew, b->lonew, b->pw, c, b->h, b->n, b->p, HL_TAPE_BATCH_MAX_LANES);
+        advance_lanes(b->znew, b->lonew, c, b->h, b->n, b->p, HL_TAPE_BATCH_MAX_LANES);
     }
 }
 static HL_FLOW_VEC void advance_all_vec(hl_flow_batch *b)
@@ -267,7 +254,7 @@ static int check_step(double *h, hl_flow_batch *b, double dir, double t, hl_erro
 {
     const int n = b->n;
     for (;;) {
-        poly_at(b->vec, b->zt, b->pw, b->coef, n, b->p, dir * *h);
+        poly_at(b->vec, b->zt, b->coef, n, b->p, dir * *h);
         poly_derivative_at(b->vec, b->dz, b->coef, n, b->p, dir * *h);
         hl_tape_eval_d(b->fz, b->zt, b->f);
         double defect = 0;
@@ -417,7 +404,7 @@ static int outputs_in_step(hl_flow_batch *b, lane *ln, int l, members *m, hl_err
          ln->k++) {
         if (!gathered)
             gather(b, l), gathered = 1;
-        poly_at(b->vec, zo, b->pw, b->coef, b->n, b->p, ln->dir * tau);
+        poly_at(b->vec, zo, b->coef, b->n, b->p, ln->dir * tau);
         int st = m->fn(ln->member, ln->k, next_out(ln), zo, e, m->arg);
         if (st != 0)
             return st;

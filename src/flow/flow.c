@@ -18,7 +18,6 @@ struct hl_flow {
     hl_flow_rule rule; /* the order and the step ratio */
     double *coef; /* n * (p+1) Taylor coefficients of the current step */
     double *zt;   /* n: state at an output time */
-    double *pw;   /* HL_FLOW_POWERS(p): the powers of a step (flow_poly.h) */
     double *dz, *fz; /* n each: P'(h) and f(P(h)), to check a step */
     double *zlo;     /* n: the state's rounding carried (advance) */
     int vec;         /* the loops' build with FMA instructions (flow_poly.h) */
@@ -59,7 +58,6 @@ hl_status hl_flow_new(hl_flow **out, hl_tape *f, double atol, double rtol, hl_er
     fl->p = fl->rule.p;
     fl->coef = hl_xcalloc((size_t)n * (fl->p + 1), sizeof *fl->coef);
     fl->zt = hl_xcalloc((size_t)n, sizeof *fl->zt);
-    fl->pw = hl_xcalloc(HL_FLOW_POWERS(fl->p), sizeof *fl->pw);
     fl->dz = hl_xcalloc((size_t)n, sizeof *fl->dz);
     fl->fz = hl_xcalloc((size_t)n, sizeof *fl->fz);
     fl->zlo = hl_xcalloc((size_t)n, sizeof *fl->zlo);
@@ -86,8 +84,6 @@ hl_status hl_flow_new_order(hl_flow **out, hl_tape *f, double atol, double rtol,
     fl->p = order;
     free(fl->coef);
     fl->coef = hl_xcalloc((size_t)fl->n * (order + 1), sizeof *fl->coef);
-    free(fl->pw);
-    fl->pw = hl_xcalloc(HL_FLOW_POWERS(order), sizeof *fl->pw);
     return HL_OK;
 }
 
@@ -97,7 +93,6 @@ void hl_flow_free(hl_flow *fl)
         return;
     free(fl->coef);
     free(fl->zt);
-    free(fl->pw);
     free(fl->dz);
     free(fl->fz);
     free(fl->ze);
@@ -184,27 +179,24 @@ long hl_flow_nsteps(const hl_flow *fl) { return fl->nsteps; }
  * carried it is the far smaller roundings of the increments.  The state
  * was added into the even chain before: two roundings a step, and errors
  * 2-4 times heyoka's at the same steps (issue 17). */
-HL_FLOW_INLINE void advance(double *z, double *lo, double *H, const double *coef, int n, int p,
-                            double h)
+HL_FLOW_INLINE void advance(double *z, double *lo, const double *coef, int n, int p, double h)
 {
     const int S = p + 1;
-    hl_flow_powers(H, p, h);
     for (int i = 0; i < n; i++) {
         const double *c = coef + (size_t)i * S;
-        double a = c[0], b = increment(c, p, H) + lo[i], s = a + b, bv = s - a;
+        double a = c[0], b = increment(c, p, h, h * h) + lo[i], s = a + b, bv = s - a;
         lo[i] = (a - (s - bv)) + (b - bv);
         z[i] = s;
     }
 }
-static HL_FLOW_VEC void advance_vec(double *z, double *lo, double *H, const double *coef, int n,
-                                    int p, double h)
+static HL_FLOW_VEC void advance_vec(double *z, double *lo, const double *coef, int n, int p,
+                                    double h)
 {
-    advance(z, lo, H, coef, n, p, h);
+    advance(z, lo, coef, n, p, h);
 }
-static void advance_plain(double *z, double *lo, double *H, const double *coef, int n, int p,
-                          double h)
+static void advance_plain(double *z, double *lo, const double *coef, int n, int p, double h)
 {
-    advance(z, lo, H, coef, n, p, h);
+    advance(z, lo, coef, n, p, h);
 }
 
 static int all_finite(const double *z, int n)
@@ -244,7 +236,7 @@ static int check_step(double *h, hl_flow *fl, double dir, double t, hl_error *er
 {
     const int n = fl->n;
     for (;;) {
-        poly_at(fl->vec, fl->zt, fl->pw, fl->coef, n, fl->p, dir * *h);
+        poly_at(fl->vec, fl->zt, fl->coef, n, fl->p, dir * *h);
         poly_derivative_at(fl->vec, fl->dz, fl->coef, n, fl->p, dir * *h);
         hl_tape_eval_d(fl->fz, fl->zt, fl->f);
         double defect = 0;
@@ -272,7 +264,7 @@ typedef struct on_step {
 static void step_state(double *z, double tau, void *arg)
 {
     const on_step *o = arg;
-    poly_at(o->fl->vec, z, o->fl->pw, o->fl->coef, o->fl->n, o->fl->p, o->dir * tau);
+    poly_at(o->fl->vec, z, o->fl->coef, o->fl->n, o->fl->p, o->dir * tau);
 }
 
 /* What falls inside the current step of length h from (thi + tlo, z): the
@@ -291,7 +283,7 @@ static int step_outputs(hl_flow *fl, int *j, double *thi, double *tlo, double *z
         double lim = hit ? tc : h;
         int st;
         for (double tau; *j < nts && (tau = dir * ((ts[*j] - *thi) - *tlo)) <= lim; ++*j) {
-            poly_at(fl->vec, fl->zt, fl->pw, fl->coef, fl->n, fl->p, dir * tau);
+            poly_at(fl->vec, fl->zt, fl->coef, fl->n, fl->p, dir * tau);
             if ((st = fn(ts[*j], fl->zt, arg)) != 0)
                 return st;
         }
@@ -336,8 +328,7 @@ static int drive(hl_flow *fl, double *thi, double *tlo, double *z, double tend, 
         if ((st = step_outputs(fl, &j, thi, tlo, z, h, dir, ts, nts, fn, arg)) != 0)
             return st;
         /* in place: the state before the step is the coefficients' order 0 */
-        (fl->vec ? advance_vec : advance_plain)(z, fl->zlo, fl->pw, fl->coef, fl->n, fl->p,
-                                                dir * h);
+        (fl->vec ? advance_vec : advance_plain)(z, fl->zlo, fl->coef, fl->n, fl->p, dir * h);
         if (!all_finite(z, fl->n)) {
             for (int i = 0; i < fl->n; i++)
                 z[i] = fl->coef[(size_t)i * (fl->p + 1)];

@@ -15,18 +15,11 @@
 
 #include "flow/flow_impl.h"
 
-/* the rule's step ratio set, and what hl_flow_step_for reads of it */
-static void set_ratio(hl_flow_rule *rule, double ln_ratio)
-{
-    rule->ln_ratio = ln_ratio;
-    rule->ratio_q = exp(ln_ratio * (rule->p - 1));
-}
-
 void hl_flow_rule_jz(hl_flow_rule *rule, double ln_tol)
 {
     rule->p = hl_flow_order_for(ln_tol);
     rule->ln_tol = ln_tol;
-    set_ratio(rule, hl_flow_ln_safety(rule->p));
+    rule->ln_ratio = hl_flow_ln_safety(rule->p);
 }
 
 /* ln of the tail past order p, sum_{k>p} r^k = r^(p+1) / (1 - r), of a
@@ -53,7 +46,7 @@ void hl_flow_rule_at(hl_flow_rule *rule, double ln_tol, int p)
         return;
     double target = ln_tail(rule->p, rule->ln_ratio) - HL_FLOW_RAISED_MARGIN;
     rule->p = p;
-    set_ratio(rule, ratio_for_tail(p, target));
+    rule->ln_ratio = ratio_for_tail(p, target);
 }
 
 /* A step's cost per unit time, in units of the radius of convergence:
