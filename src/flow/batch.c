@@ -39,7 +39,7 @@ struct hl_flow_batch {
     hl_tape *f;
     hl_tape_batch *tb;
     int n, p, L;
-    double atol, rtol, ln_atol, ln_rtol;
+    hl_flow_tols tols;
     hl_flow_rule rule; /* hl_flow_new's order and step ratio */
     lane *lanes;
     /* by component i and lane l at i * L + l, so that the lanes' sums run
@@ -52,6 +52,7 @@ struct hl_flow_batch {
     double *zo;           /* L * n: each lane's last output, contiguous */
     double eps;
     int check;
+    int vec; /* the loops' build with FMA instructions (flow_poly.h) */
 };
 
 hl_status hl_flow_batch_new(hl_flow_batch **out, hl_tape *f, double atol, double rtol, int lanes,
@@ -73,11 +74,7 @@ hl_status hl_flow_batch_new(hl_flow_batch **out, hl_tape *f, double atol, double
     b->n = hl_tape_ninputs(f);
     b->p = p;
     b->L = lanes;
-    b->atol = atol;
-    b->rtol = rtol;
-    b->ln_atol = log(atol);
-    b->ln_rtol = log(rtol);
-    hl_flow_rule_for(&b->rule, log(fmax(fmin(atol, rtol), HL_FLOW_MIN_RTOL)), f);
+    hl_flow_rule_for(&b->rule, hl_flow_tols_set(&b->tols, atol, rtol), f);
     b->lanes = hl_xcalloc((size_t)lanes, sizeof *b->lanes);
     for (int l = 0; l < lanes; l++)
         b->lanes[l].member = -1;
@@ -92,6 +89,7 @@ hl_status hl_flow_batch_new(hl_flow_batch **out, hl_tape *f, double atol, double
     b->dz = hl_xcalloc((size_t)b->n, sizeof *b->dz);
     b->fz = hl_xcalloc((size_t)b->n, sizeof *b->fz);
     b->zo = hl_xcalloc(nl, sizeof *b->zo);
+    b->vec = hl_flow_vec_ok();
     *out = b;
     return HL_OK;
 }
@@ -100,22 +98,17 @@ hl_status hl_flow_batch_new(hl_flow_batch **out, hl_tape *f, double atol, double
  * of its defect): 0 if it cannot be taken. */
 static double first_step(hl_tape *f, int p, double atol, double rtol, const double *z0)
 {
-    const int n = hl_tape_ninputs(f), S = p + 1, lo = hl_flow_window_lo(p), nw = p - lo + 1;
-    double *c = hl_xcalloc((size_t)n * S, sizeof *c), n0 = 0, win[HL_FLOW_WINDOW] = {0};
+    const int n = hl_tape_ninputs(f), S = p + 1;
+    double *c = hl_xcalloc((size_t)n * S, sizeof *c), win[HL_FLOW_WINDOW], eps;
     for (int i = 0; i < n; i++)
         c[(size_t)i * S] = z0[i];
-    int ok = hl_tape_taylor_ode_d(c, p, f, NULL) == HL_OK;
-    for (int i = 0; ok && i < n; i++) {
-        n0 = fmax(n0, fabs(c[(size_t)i * S]));
-        for (int j = 0; j < nw; j++)
-            win[j] = fmax(win[j], fabs(c[(size_t)i * S + lo + j]));
-    }
-    free(c);
-    int check, relative = rtol * n0 > atol;
-    double eps = relative ? rtol * n0 : atol;
+    int ok = hl_tape_taylor_ode_d(c, p, f, NULL) == HL_OK, check;
+    hl_flow_tols tols;
     hl_flow_rule rule;
-    hl_flow_rule_for(&rule, log(fmax(fmin(atol, rtol), HL_FLOW_MIN_RTOL)), f);
-    double h = ok ? hl_flow_step_for(&check, eps, log(eps), &rule, win) : 0;
+    hl_flow_rule_for(&rule, hl_flow_tols_set(&tols, atol, rtol), f);
+    double s = hl_flow_scale(&tols, hl_flow_norms(win, c, n, p, 1), &eps);
+    double h = ok ? hl_flow_step_for(&check, eps, s, &rule, win) : 0;
+    free(c);
     return h > 0 ? h : 0; /* NaN: 0 */
 }
 
@@ -168,9 +161,8 @@ int hl_flow_batch_compiled(const hl_flow_batch *b)
 /* flow.c's advance for every lane at once, lane l by its own step h[l]
  * (the same operations per lane; the lanes' loops are innermost, so that
  * the compiler runs them side by side: AL lanes, a constant) */
-static inline __attribute__((always_inline)) void advance_lanes(double *z, double *lo,
-                                                                const double *coef, const double *h,
-                                                                int n, int p, const int AL)
+HL_FLOW_INLINE void advance_lanes(double *z, double *lo, const double *coef, const double *h, int n,
+                                  int p, const int AL)
 {
     const int S = p + 1, top_e = p & ~1, top_o = (p - 1) | 1;
     double h2[HL_TAPE_BATCH_MAX_LANES], e[HL_TAPE_BATCH_MAX_LANES], o[HL_TAPE_BATCH_MAX_LANES];
@@ -184,12 +176,12 @@ static inline __attribute__((always_inline)) void advance_lanes(double *z, doubl
         }
         for (int k = top_e - 2; k >= 2; k -= 2)
             for (int l = 0; l < AL; l++)
-                e[l] = e[l] * h2[l] + c[k * AL + l];
+                e[l] = fma(e[l], h2[l], c[k * AL + l]);
         for (int k = top_o - 2; k >= 1; k -= 2)
             for (int l = 0; l < AL; l++)
-                o[l] = o[l] * h2[l] + c[k * AL + l];
+                o[l] = fma(o[l], h2[l], c[k * AL + l]);
         for (int l = 0; l < AL; l++) {
-            double a = c[l], b = (h[l] * o[l] + h2[l] * e[l]) + lo[i * AL + l], s = a + b,
+            double a = c[l], b = fma(h[l], o[l], h2[l] * e[l]) + lo[i * AL + l], s = a + b,
                    bv = s - a;
             lo[i * AL + l] = (a - (s - bv)) + (b - bv);
             z[i * AL + l] = s;
@@ -197,7 +189,7 @@ static inline __attribute__((always_inline)) void advance_lanes(double *z, doubl
     }
 }
 
-static void advance_all(hl_flow_batch *b)
+static inline __attribute__((always_inline)) void advance_all(hl_flow_batch *b)
 {
     const double *c = hl_tape_batch_coefs(b->tb);
     memcpy(b->lonew, b->zlo, (size_t)b->n * b->L * sizeof *b->zlo);
@@ -218,6 +210,14 @@ static void advance_all(hl_flow_batch *b)
         advance_lanes(b->znew, b->lonew, c, b->h, b->n, b->p, HL_TAPE_BATCH_MAX_LANES);
     }
 }
+static HL_FLOW_VEC void advance_all_vec(hl_flow_batch *b)
+{
+    advance_all(b);
+}
+static void advance_all_plain(hl_flow_batch *b)
+{
+    advance_all(b);
+}
 
 /* ---- one lane's step ---------------------------------------------------------- */
 
@@ -234,26 +234,11 @@ static void gather(hl_flow_batch *b, int l)
 /* flow.c's step_size on lane l's coefficients, where they are */
 static int step_size(double *h, hl_flow_batch *b, int l, double t, hl_error *err)
 {
-    const int n = b->n, p = b->p, S = p + 1, L = b->L;
+    const int n = b->n, p = b->p, L = b->L;
     const double *c = hl_tape_batch_coefs(b->tb) + l;
-    const int lo = hl_flow_window_lo(p), nw = p - lo + 1;
-    double n0 = 0, sum = 0, win[HL_FLOW_WINDOW] = {0};
-    for (int i = 0; i < n; i++) {
-        const double *ci = c + (size_t)i * S * L;
-        double a0 = fabs(ci[0]);
-        n0 = a0 > n0 ? a0 : n0;
-        for (int j = 0; j < nw; j++) { /* flow.c's add_norms */
-            double a = fabs(ci[(size_t)(lo + j) * L]);
-            win[j] = a > win[j] ? a : win[j];
-            sum += a;
-        }
-    }
-    if (!isfinite(sum))
-        win[nw - 1] = NAN;
-    int relative = b->rtol * n0 > b->atol;
-    b->eps = relative ? b->rtol * n0 : b->atol;
-    double ln_eps = relative ? b->ln_rtol + log(n0) : b->ln_atol;
-    *h = hl_flow_step_for(&b->check, b->eps, ln_eps, &b->rule, win);
+    double win[HL_FLOW_WINDOW];
+    double s = hl_flow_scale(&b->tols, hl_flow_norms(win, c, n, p, L), &b->eps);
+    *h = hl_flow_step_for(&b->check, b->eps, s, &b->rule, win);
     if (isnan(*h))
         return hl_error_set(
             err, HL_EDOM, NULL, -1, 0,
@@ -269,8 +254,8 @@ static int check_step(double *h, hl_flow_batch *b, double dir, double t, hl_erro
 {
     const int n = b->n;
     for (;;) {
-        horner(b->zt, b->coef, n, b->p, dir * *h);
-        horner_derivative(b->dz, b->coef, n, b->p, dir * *h);
+        poly_at(b->vec, b->zt, b->coef, n, b->p, dir * *h);
+        poly_derivative_at(b->vec, b->dz, b->coef, n, b->p, dir * *h);
         hl_tape_eval_d(b->fz, b->zt, b->f);
         double defect = 0;
         for (int i = 0; i < n; i++) {
@@ -419,7 +404,7 @@ static int outputs_in_step(hl_flow_batch *b, lane *ln, int l, members *m, hl_err
          ln->k++) {
         if (!gathered)
             gather(b, l), gathered = 1;
-        horner(zo, b->coef, b->n, b->p, ln->dir * tau);
+        poly_at(b->vec, zo, b->coef, b->n, b->p, ln->dir * tau);
         int st = m->fn(ln->member, ln->k, next_out(ln), zo, e, m->arg);
         if (st != 0)
             return st;
@@ -545,7 +530,7 @@ static void turn(hl_flow_batch *b, members *m, int busy)
             finish(b, ln, m, st, &e);
         }
     }
-    advance_all(b);
+    (b->vec ? advance_all_vec : advance_all_plain)(b);
     for (int l = 0; l < b->L; l++) {
         lane *ln = &b->lanes[l];
         if (ln->member < 0)
@@ -576,19 +561,21 @@ static hl_status run_members(hl_flow_batch *b, members *m, hl_error *err)
                         m->first.msg);
 }
 
+/* What evolve and grid share of their members: the states and what is
+ * told of each; none failed yet */
+static members members_of(int B, double *z, hl_status *status, long *nsteps, hl_error *errs)
+{
+    return (members){.B = B, .z = z, .status = status, .nsteps = nsteps, .errs = errs, .failed = B};
+}
+
 hl_status hl_flow_batch_evolve(hl_flow_batch *b, int B, double *t, const double *t1, double *z,
                                hl_status *status, long *nsteps, hl_error *errs, hl_error *err)
 {
     if (B < 0)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "a negative number of members (%d)", B);
-    members m = {.B = B,
-                 .t = t,
-                 .t1 = t1,
-                 .z = z,
-                 .status = status,
-                 .nsteps = nsteps,
-                 .errs = errs,
-                 .failed = B};
+    members m = members_of(B, z, status, nsteps, errs);
+    m.t = t;
+    m.t1 = t1;
     return run_members(b, &m, err);
 }
 
@@ -600,17 +587,12 @@ hl_status hl_flow_batch_grid(hl_flow_batch *b, int B, const double *dt, const lo
     if (B < 0 || fn == NULL)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
                             "a grid needs B >= 0 members (%d) and a callback", B);
-    members m = {.B = B,
-                 .dt = dt,
-                 .k0 = k0,
-                 .k1 = k1,
-                 .segment = segment,
-                 .fn = fn,
-                 .arg = arg,
-                 .z = z,
-                 .status = status,
-                 .nsteps = nsteps,
-                 .errs = errs,
-                 .failed = B};
+    members m = members_of(B, z, status, nsteps, errs);
+    m.dt = dt;
+    m.k0 = k0;
+    m.k1 = k1;
+    m.segment = segment;
+    m.fn = fn;
+    m.arg = arg;
     return run_members(b, &m, err);
 }

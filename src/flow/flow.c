@@ -14,13 +14,13 @@
 struct hl_flow {
     hl_tape *f;
     int n, p;
-    double atol, rtol;
-    double ln_atol, ln_rtol;
+    hl_flow_tols tols;
     hl_flow_rule rule; /* the order and the step ratio */
     double *coef; /* n * (p+1) Taylor coefficients of the current step */
     double *zt;   /* n: state at an output time */
     double *dz, *fz; /* n each: P'(h) and f(P(h)), to check a step */
-    double *zlo, *lo_next; /* n each: the state's rounding carried (advance) */
+    double *zlo;     /* n: the state's rounding carried (advance) */
+    int vec;         /* the loops' build with FMA instructions (flow_poly.h) */
     double eps;      /* the current step's tolerance */
     int check;       /* the current step is to be checked (hl_flow_shrink) */
     long nsteps;
@@ -54,20 +54,14 @@ hl_status hl_flow_new(hl_flow **out, hl_tape *f, double atol, double rtol, hl_er
     hl_flow *fl = hl_xcalloc(1, sizeof *fl);
     fl->f = f;
     fl->n = n;
-    fl->atol = atol;
-    fl->rtol = rtol;
-    fl->ln_atol = log(atol);
-    fl->ln_rtol = log(rtol);
-    /* an atol far below rtol only says that the relative error counts
-     * near 0; an order from it would not be reached in double */
-    hl_flow_rule_for(&fl->rule, log(fmax(fmin(atol, rtol), HL_FLOW_MIN_RTOL)), f);
+    hl_flow_rule_for(&fl->rule, hl_flow_tols_set(&fl->tols, atol, rtol), f);
     fl->p = fl->rule.p;
     fl->coef = hl_xcalloc((size_t)n * (fl->p + 1), sizeof *fl->coef);
     fl->zt = hl_xcalloc((size_t)n, sizeof *fl->zt);
     fl->dz = hl_xcalloc((size_t)n, sizeof *fl->dz);
     fl->fz = hl_xcalloc((size_t)n, sizeof *fl->fz);
     fl->zlo = hl_xcalloc((size_t)n, sizeof *fl->zlo);
-    fl->lo_next = hl_xcalloc((size_t)n, sizeof *fl->lo_next);
+    fl->vec = hl_flow_vec_ok();
     fl->native_end = NAN;
     *out = fl;
     return HL_OK;
@@ -103,7 +97,6 @@ void hl_flow_free(hl_flow *fl)
     free(fl->fz);
     free(fl->ze);
     free(fl->zlo);
-    free(fl->lo_next);
     free(fl);
 }
 
@@ -186,7 +179,7 @@ long hl_flow_nsteps(const hl_flow *fl) { return fl->nsteps; }
  * carried it is the far smaller roundings of the increments.  The state
  * was added into the even chain before: two roundings a step, and errors
  * 2-4 times heyoka's at the same steps (issue 17). */
-static void advance(double *z, double *lo, const double *coef, int n, int p, double h)
+HL_FLOW_INLINE void advance(double *z, double *lo, const double *coef, int n, int p, double h)
 {
     const int S = p + 1;
     for (int i = 0; i < n; i++) {
@@ -196,6 +189,15 @@ static void advance(double *z, double *lo, const double *coef, int n, int p, dou
         z[i] = s;
     }
 }
+static HL_FLOW_VEC void advance_vec(double *z, double *lo, const double *coef, int n, int p,
+                                    double h)
+{
+    advance(z, lo, coef, n, p, h);
+}
+static void advance_plain(double *z, double *lo, const double *coef, int n, int p, double h)
+{
+    advance(z, lo, coef, n, p, h);
+}
 
 static int all_finite(const double *z, int n)
 {
@@ -203,20 +205,6 @@ static int all_finite(const double *z, int n)
         if (!isfinite(z[i]))
             return 0;
     return 1;
-}
-
-/* win[j] = max(win[j], |cw[j]|) for j < nw, and their sum (the maxima
- * drop NaN; a sum keeps it).  Inlined twice: with nw the constant window
- * (any order from 6 on, one step of the hot loop) it unrolls. */
-static inline double add_norms(double *win, const double *cw, int nw)
-{
-    double sum = 0;
-    for (int j = 0; j < nw; j++) {
-        double a = fabs(cw[j]);
-        win[j] = a > win[j] ? a : win[j];
-        sum += a;
-    }
-    return sum;
 }
 
 /* One step's coefficients at z, and its size (> 0, maybe +inf). */
@@ -229,21 +217,9 @@ static int step_size(double *h, hl_flow *fl, const double *z, double t, hl_error
     int st = hl_tape_taylor_ode_d(c, p, fl->f, err);
     if (st != HL_OK)
         return st;
-    const int lo = hl_flow_window_lo(p), nw = p - lo + 1;
-    double n0 = 0, sum = 0, win[HL_FLOW_WINDOW] = {0}; /* the norms of the orders lo..p */
-    for (int i = 0; i < n; i++) {
-        const double *ci = c + (size_t)i * S;
-        double a0 = fabs(ci[0]);
-        n0 = a0 > n0 ? a0 : n0;
-        sum += nw == HL_FLOW_WINDOW ? add_norms(win, ci + lo, HL_FLOW_WINDOW)
-                                    : add_norms(win, ci + lo, nw);
-    }
-    if (!isfinite(sum))
-        win[nw - 1] = NAN;
-    int relative = fl->rtol * n0 > fl->atol;
-    fl->eps = relative ? fl->rtol * n0 : fl->atol;
-    double ln_eps = relative ? fl->ln_rtol + log(n0) : fl->ln_atol;
-    *h = hl_flow_step_for(&fl->check, fl->eps, ln_eps, &fl->rule, win);
+    double win[HL_FLOW_WINDOW]; /* the norms of the orders lo..p */
+    double s = hl_flow_scale(&fl->tols, hl_flow_norms(win, c, n, p, 1), &fl->eps);
+    *h = hl_flow_step_for(&fl->check, fl->eps, s, &fl->rule, win);
     if (isnan(*h))
         return hl_error_set(err, HL_EDOM, NULL, -1, 0,
                             "the solution is not finite (Taylor coefficients overflow) at t = %.17g", t);
@@ -260,8 +236,8 @@ static int check_step(double *h, hl_flow *fl, double dir, double t, hl_error *er
 {
     const int n = fl->n;
     for (;;) {
-        horner(fl->zt, fl->coef, n, fl->p, dir * *h);
-        horner_derivative(fl->dz, fl->coef, n, fl->p, dir * *h);
+        poly_at(fl->vec, fl->zt, fl->coef, n, fl->p, dir * *h);
+        poly_derivative_at(fl->vec, fl->dz, fl->coef, n, fl->p, dir * *h);
         hl_tape_eval_d(fl->fz, fl->zt, fl->f);
         double defect = 0;
         for (int i = 0; i < n; i++) {
@@ -288,7 +264,7 @@ typedef struct on_step {
 static void step_state(double *z, double tau, void *arg)
 {
     const on_step *o = arg;
-    horner(z, o->fl->coef, o->fl->n, o->fl->p, o->dir * tau);
+    poly_at(o->fl->vec, z, o->fl->coef, o->fl->n, o->fl->p, o->dir * tau);
 }
 
 /* What falls inside the current step of length h from (thi + tlo, z): the
@@ -307,7 +283,7 @@ static int step_outputs(hl_flow *fl, int *j, double *thi, double *tlo, double *z
         double lim = hit ? tc : h;
         int st;
         for (double tau; *j < nts && (tau = dir * ((ts[*j] - *thi) - *tlo)) <= lim; ++*j) {
-            horner(fl->zt, fl->coef, fl->n, fl->p, dir * tau);
+            poly_at(fl->vec, fl->zt, fl->coef, fl->n, fl->p, dir * tau);
             if ((st = fn(ts[*j], fl->zt, arg)) != 0)
                 return st;
         }
@@ -351,13 +327,14 @@ static int drive(hl_flow *fl, double *thi, double *tlo, double *z, double tend, 
         int last = h == rem;
         if ((st = step_outputs(fl, &j, thi, tlo, z, h, dir, ts, nts, fn, arg)) != 0)
             return st;
-        memcpy(fl->lo_next, fl->zlo, (size_t)fl->n * sizeof *z);
-        advance(fl->zt, fl->lo_next, fl->coef, fl->n, fl->p, dir * h);
-        if (!all_finite(fl->zt, fl->n))
+        /* in place: the state before the step is the coefficients' order 0 */
+        (fl->vec ? advance_vec : advance_plain)(z, fl->zlo, fl->coef, fl->n, fl->p, dir * h);
+        if (!all_finite(z, fl->n)) {
+            for (int i = 0; i < fl->n; i++)
+                z[i] = fl->coef[(size_t)i * (fl->p + 1)];
             return hl_error_set(err, HL_EDOM, NULL, -1, 0, "the solution is not finite at t = %.17g",
                                 *thi + dir * h);
-        memcpy(z, fl->zt, (size_t)fl->n * sizeof *z);
-        memcpy(fl->zlo, fl->lo_next, (size_t)fl->n * sizeof *z);
+        }
         fl->nsteps++;
         native_decide(fl, *thi + dir * h, h);
         if (last) {

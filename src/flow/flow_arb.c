@@ -128,7 +128,7 @@ static int step_size(double *h, hl_flow_arb *fl, arb_srcptr z, const arb_t t, hl
     hl_flow_rule rule;
     hl_flow_rule_jz(&rule, fl->ln_tol);
     /* exp may underflow: see hl_flow_step_for */
-    *h = finite ? hl_flow_step_for(&fl->check, exp(fl->ln_eps), fl->ln_eps, &rule, win) : NAN;
+    *h = finite ? hl_flow_step_for(&fl->check, exp(fl->ln_eps), n0 > 1 ? n0 : 1, &rule, win) : NAN;
     if (isnan(*h))
         return hl_error_set(err, HL_EDOM, NULL, -1, 0,
                             "the solution is not finite (Taylor coefficients overflow) at t = %.17g",
