@@ -159,6 +159,14 @@ typedef int (*hl_sweep_fn)(const hl_sweep_result *r, void *arg);
  * whole (no memory, a thread that cannot start, a stop). */
 hl_status hl_sweep_run(hl_sweep *sw, const long *members, long n, int threads, hl_sweep_fn fn,
                        void *fn_arg, hl_progress_fn progress, void *progress_arg, hl_error *err);
+/* For a caller that hands a sweep out in chunks (the MPI master): members
+ * m and m' belong together when m / q == m' / q for this q, a multiple of
+ * the members of a point (all schemes and steps): whole rounds of the SIMD
+ * lanes (the lanes' width in points, times the paramsets when they are
+ * few).  A chunk of whole blocks of q runs its lanes full; a chunk cut
+ * elsewhere gives the same rows, only slower (a part-empty round costs a
+ * full one). */
+long hl_sweep_chunk_quantum(const hl_sweep *sw);
 
 /* ---- the table of results, in member order ----------------------------- */
 typedef struct hl_sweep_table hl_sweep_table;

@@ -124,17 +124,15 @@ static const cli_mpi_api *load_plugin(void)
     return api;
 }
 
-/* Members per group: the schemes times the steps (sweep.h's numbering);
- * a chunk never splits one, so a point's chaos indicators are computed
- * once.  Only the speed depends on it, never a row. */
+/* Members per group: a chunk never splits one.  The sweep's chunk quantum
+ * (sweep.h): whole points, so a point's chaos indicators are computed once,
+ * and whole rounds of the SIMD lanes, so that a rank's lanes run full (a
+ * chunk of 2 points in 8 lanes costs what 8 points cost).  Only the speed
+ * depends on it, never a row. */
 static long group_size(const hl_sweep *sw)
 {
-    const char *dts = hl_sweep_get_spec(sw)->dts;
-    long ndts = 1;
-    for (const char *c = dts; c != NULL && *c; c++)
-        ndts += *c == ',';
-    long group = (long)hl_sweep_nschemes(sw) * ndts;
-    return group > 0 && hl_sweep_count(sw) % group == 0 ? group : 1;
+    long group = hl_sweep_chunk_quantum(sw);
+    return group > 0 ? group : 1;
 }
 
 typedef struct serve_ctx {

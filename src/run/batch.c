@@ -45,13 +45,19 @@ static int lanes_wanted(const hl_run *r)
 /* The loop over lanes, compiled, if members can share it: an explicit
  * scheme's run as hl_run_fixed's fast path would take it (no reference,
  * events or progress callback; machine code on) and B * n member-steps
- * enough to pay for compiling it.  NULL: one member at a time. */
+ * enough to pay for compiling it — or the loop already compiled in r: its
+ * cost is paid, and asking again per call would make a small batch after
+ * large ones (a sweep's last members, an MPI rank's small chunk) run one
+ * member at a time, each in the interpreter.  NULL: one member at a time. */
 static hl_tape_iter_batch *lane_loop(hl_run *r, long B, long n)
 {
     int L = lanes_wanted(r);
     if (L < 2 || B < 2 || r->stepper == NULL || r->ref_on || r->ev != NULL || r->progress != NULL ||
         !r->jit || !hl_tape_jit_available())
         return NULL;
+    if (r->lane_loop != NULL && hl_tape_iter_batch_lanes(r->lane_loop) == L &&
+        hl_tape_iter_batch_compiled(r->lane_loop))
+        return r->lane_loop;
     hl_tape *fused = hl_run_fused_(r);
     if (fused == NULL || !hl_tape_compile_pays(fused, HL_COMPILE_LOOP, B * n))
         return NULL;

@@ -136,7 +136,11 @@ int sweep_has_lanes(const hl_sweep *sw);
 long sweep_lane_groups(const hl_sweep *sw, const long *list, long n,
                        int (*fits)(const hl_sweep *sw, sweep_where at), int same_dt, long *order,
                        long *start);
-/* How many members that may run in lanes a work unit should hold. */
+/* The points of one round of the widest lanes the sweep's members use
+ * (1 if none may). */
+int sweep_lanes_width(const hl_sweep *sw);
+/* How many members that may run in lanes a work unit should hold: a
+ * multiple of a round of the lanes, so that they run full. */
 long sweep_lanes_unit(const hl_sweep *sw, long lane_members, int threads);
 /* arrays.c: a thread's collector of one member's arrays (sweep.h,
  * "Arrays"): the trajectory rows of its run's callback and the crossings
