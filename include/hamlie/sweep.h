@@ -209,6 +209,13 @@ hl_status hl_sweep_journal_open(hl_sweep_journal **out, const hl_sweep *sw, cons
                                 int resume, hl_sweep_table *tab, hl_error *err);
 int hl_sweep_journal_append(const hl_sweep_result *r, void *journal); /* an hl_sweep_fn */
 void hl_sweep_journal_close(hl_sweep_journal *j, int remove_file);
+/* Appends from now on are flushed by hl_sweep_journal_flush (and closing)
+ * instead of each at once: for a caller that takes in results in batches
+ * and flushes once a batch.  A kill loses the records not flushed. */
+void hl_sweep_journal_defer(hl_sweep_journal *j);
+/* The records appended since the last flush to the file; non-zero (as
+ * hl_sweep_journal_failed) if a write failed. */
+int hl_sweep_journal_flush(hl_sweep_journal *j);
 /* 1 once an append failed (disk full): the sweep was stopped by it. */
 int hl_sweep_journal_failed(const hl_sweep_journal *j);
 

@@ -220,10 +220,14 @@ static void on_terminate(int sig)
     terminated = 1;
 }
 
-/* mpirun passes a Ctrl-C on as SIGTERM: stop as for SIGINT */
+/* mpirun passes a Ctrl-C on as SIGTERM: stop as for SIGINT.  Polled
+ * between messages, after a worker's chunk of results has been stored:
+ * the journal's records are flushed here, once a chunk (deferred). */
 static int stopped(void *arg)
 {
-    (void)arg;
+    serve_ctx *c = arg;
+    if (c->journal != NULL && hl_sweep_journal_flush(c->journal) != 0)
+        return 1;
     return terminated || cli_interrupted();
 }
 
@@ -276,6 +280,8 @@ int cli_sweep_mpi_serve(hl_sweep *sw, hl_sweep_table *tab, hl_sweep_journal *jou
         cli_progress_say(&p, "%ld members on %d rank%s of %d thread%s%s", ntodo, mpi.size,
                          mpi.size == 1 ? "" : "s", mpi.threads, mpi.threads == 1 ? "" : "s",
                          ntodo < c.total ? " (the others done before)" : "");
+    if (journal != NULL)
+        hl_sweep_journal_defer(journal); /* flushed in stopped(), a chunk at a time */
     cli_mpi_job job = job_of(&c);
     job.todo = todo;
     job.ntodo = ntodo;
