@@ -433,7 +433,8 @@ static paramset_ctx *lane_group(sweep_worker *w, const long *list, const long *o
     return c->status == HL_OK ? c : NULL;
 }
 
-void sweep_worker_prepare(sweep_worker *w, const long *list, long n)
+void sweep_worker_prepare(sweep_worker *w, const long *list, long n, sweep_ran_fn *ran,
+                          void *ran_arg)
 {
     const hl_sweep *sw = w->sw;
     w->ready.n = 0;
@@ -450,14 +451,20 @@ void sweep_worker_prepare(sweep_worker *w, const long *list, long n)
             continue;
         sweep_where at = sweep_locate(sw, ms[0]);
         sweep_point(sw, at.point, w->z0);
-        if (lanes_for(w, c, at.scheme, w->z0) != NULL)
+        if (lanes_for(w, c, at.scheme, w->z0) != NULL) {
             run_in_lanes(w, c, lie_lanes, ms, B);
+            if (ran != NULL)
+                ran(B, ran_arg);
+        }
     }
     ng = sweep_lane_groups(sw, list, n, fits_fixed, 1 /* same dt */, order, start);
     for (long g = 0; g < ng; g++) {
         paramset_ctx *c = lane_group(w, list, order, start, g, ms, &B);
-        if (c != NULL)
-            run_in_lanes(w, c, fixed_lanes, ms, B);
+        if (c == NULL)
+            continue;
+        run_in_lanes(w, c, fixed_lanes, ms, B);
+        if (ran != NULL)
+            ran(B, ran_arg);
     }
     free(order), free(start), free(ms);
 }
@@ -467,7 +474,7 @@ void sweep_member_arrays(const sweep_worker *w, hl_sweep_result *r)
     sweep_arrays_result(&w->arrays, r);
 }
 
-void sweep_member(sweep_worker *w, long m, double *row, hl_status *status, char *reason)
+int sweep_member(sweep_worker *w, long m, double *row, hl_status *status, char *reason)
 {
     const hl_sweep *sw = w->sw;
     sweep_arrays_begin(&w->arrays); /* none for a member that does not run */
@@ -480,20 +487,20 @@ void sweep_member(sweep_worker *w, long m, double *row, hl_status *status, char 
     if (c->status != HL_OK) {
         *status = c->status;
         snprintf(reason, HL_SWEEP_REASON, "%s", c->reason);
-        return;
+        return 0;
     }
-    if (!take_ready(w, m, row, status, reason)) {
+    int ready = take_ready(w, m, row, status, reason);
+    if (!ready) {
         hl_error err;
         hl_error_clear(&err);
         *status = run_member(w, c, at, row, &err);
         if (*status != HL_OK)
             set_reason(reason, "", &err);
     }
-    if (*status != HL_OK)
-        return;
-    if (sw->spec.chaos) {
+    if (*status == HL_OK && sw->spec.chaos) {
         chaos_of(w, c, at, row);
         *status = w->chaos_status;
         snprintf(reason, HL_SWEEP_REASON, "%s", w->chaos_reason);
     }
+    return ready;
 }

@@ -104,15 +104,20 @@ hl_status sweep_number(double *v, const char *text, int pos, int len, const char
 typedef struct sweep_worker sweep_worker;
 sweep_worker *sweep_worker_new(const hl_sweep *sw);
 void sweep_worker_free(sweep_worker *w);
-/* Runs member m into row (ncols values), its status and reason.  *chaos_ok
- * says whether the chaos columns of (point, paramset) are cached: members
- * of one group share them. */
-void sweep_member(sweep_worker *w, long m, double *row, hl_status *status, char *reason);
+/* Runs member m into row (ncols values), its status and reason (the
+ * chaos columns of (point, paramset) are kept for the group's members).
+ * Returns 1 if sweep_worker_prepare had run it in lanes, else 0. */
+int sweep_member(sweep_worker *w, long m, double *row, hl_status *status, char *reason);
 
 /* Runs the members among list[0..n-1] (a work unit) that may share SIMD
  * lanes (lanes.c: lie members, and fixed-step ones without --reference or
  * --order) in lanes where that pays, keeping their rows for sweep_member. */
-void sweep_worker_prepare(sweep_worker *w, const long *list, long n);
+typedef void sweep_ran_fn(long members, void *arg);
+/* ran (may be NULL) is told, after each group that ran in lanes, how many
+ * members it ran: the progress line moves as they run, not a unit at a
+ * time. */
+void sweep_worker_prepare(sweep_worker *w, const long *list, long n, sweep_ran_fn *ran,
+                          void *ran_arg);
 /* The members this process has run in lanes (tests): lie members in
  * lanes, fixed-step ones in a batch whose compiled loop runs lanes. */
 long sweep_lanes_members(void);
