@@ -1,12 +1,11 @@
 /* How many rows a second rank 0 of `mpirun hamlie sweep` takes in: the
  * protocol of hamlie-mpi.so with members that cost nothing, so the rate is
  * that of the messages and of storing the rows in a table (and, with
- * JOURNAL, of appending each to a file and flushing it, as the journal
- * does).  Rank 0 only serves (master idle).  For docs/sweep-at-scale.md.
- *   mpirun -np K bench-sweep_mpi_rate PLUGIN NCOLS MEMBERS [JOURNAL]
- * prints: members, ncols, seconds, rows/s, MB/s of rows received, and
- * rank 0's CPU seconds and rows per CPU second (the machine may be
- * shared: the CPU figure is the one that says what rank 0 can take). */
+ * JOURNAL, of appending each to a file, flushed once per message between
+ * polls, as sweep_mpi.c does with the journal).  Rank 0 only serves (master idle).  For
+ * docs/sweep-at-scale.md. mpirun -np K bench-sweep_mpi_rate PLUGIN NCOLS MEMBERS [JOURNAL] prints:
+ * members, ncols, seconds, rows/s, MB/s of rows received, and rank 0's CPU seconds and rows per CPU
+ * second (the machine may be shared: the CPU figure is the one that says what rank 0 can take). */
 #include <dlfcn.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,6 +19,7 @@ typedef struct rate {
     int ncols;
     double *table;
     FILE *journal;
+    int pending; /* records not flushed */
     long stored;
 } rate;
 
@@ -45,11 +45,22 @@ static int store(void *arg, const hl_sweep_result *res)
     memcpy(r->table + (size_t)res->member * (size_t)r->ncols, res->row,
            (size_t)r->ncols * sizeof(double));
     r->stored++;
-    if (r->journal != NULL) { /* as the journal: a record, then flushed */
+    if (r->journal != NULL) { /* as the journal: a record, flushed by between() */
         fwrite(&res->member, sizeof res->member, 1, r->journal);
         fwrite(res->row, sizeof(double), (size_t)r->ncols, r->journal);
-        fflush(r->journal);
+        r->pending = 1;
     }
+    return 0;
+}
+
+/* Polled between messages (job.stopped): a message's records flushed at
+ * once, as sweep_mpi.c's stopped() flushes the journal. */
+static int between(void *arg)
+{
+    rate *r = arg;
+    if (r->pending)
+        fflush(r->journal);
+    r->pending = 0;
     return 0;
 }
 
@@ -97,6 +108,8 @@ int main(int argc, char **argv)
         for (long m = 0; m < members; m++)
             todo[m] = m;
         r.journal = argc > 4 ? fopen(argv[4], "wb") : NULL;
+        if (r.journal != NULL)
+            setvbuf(r.journal, NULL, _IOFBF, 1 << 16); /* as journal.c */
     }
     cli_mpi_job job = {.ncols = r.ncols,
                        .group = 1,
@@ -107,6 +120,7 @@ int main(int argc, char **argv)
                        .ntodo = rank == 0 ? members : 0,
                        .compute = instant,
                        .store = store,
+                       .stopped = r.journal != NULL ? between : NULL,
                        .arg = &r};
     double t0 = seconds(), c0 = cpu_seconds();
     int outcome = api->run(&job, msg, sizeof msg);

@@ -159,6 +159,14 @@ typedef int (*hl_sweep_fn)(const hl_sweep_result *r, void *arg);
  * whole (no memory, a thread that cannot start, a stop). */
 hl_status hl_sweep_run(hl_sweep *sw, const long *members, long n, int threads, hl_sweep_fn fn,
                        void *fn_arg, hl_progress_fn progress, void *progress_arg, hl_error *err);
+/* For a caller that hands a sweep out in chunks (the MPI master): members
+ * m and m' belong together when m / q == m' / q for this q, a multiple of
+ * the members of a point (all schemes and steps): whole rounds of the SIMD
+ * lanes (the lanes' width in points, times the paramsets when they are
+ * few).  A chunk of whole blocks of q runs its lanes full; a chunk cut
+ * elsewhere gives the same rows, only slower (a part-empty round costs a
+ * full one). */
+long hl_sweep_chunk_quantum(const hl_sweep *sw);
 
 /* ---- the table of results, in member order ----------------------------- */
 typedef struct hl_sweep_table hl_sweep_table;
@@ -201,6 +209,13 @@ hl_status hl_sweep_journal_open(hl_sweep_journal **out, const hl_sweep *sw, cons
                                 int resume, hl_sweep_table *tab, hl_error *err);
 int hl_sweep_journal_append(const hl_sweep_result *r, void *journal); /* an hl_sweep_fn */
 void hl_sweep_journal_close(hl_sweep_journal *j, int remove_file);
+/* Appends from now on are flushed by hl_sweep_journal_flush (and closing)
+ * instead of each at once: for a caller that takes in results in batches
+ * and flushes once a batch.  A kill loses the records not flushed. */
+void hl_sweep_journal_defer(hl_sweep_journal *j);
+/* The records appended since the last flush to the file; non-zero (as
+ * hl_sweep_journal_failed) if a write failed. */
+int hl_sweep_journal_flush(hl_sweep_journal *j);
 /* 1 once an append failed (disk full): the sweep was stopped by it. */
 int hl_sweep_journal_failed(const hl_sweep_journal *j);
 

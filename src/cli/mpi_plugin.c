@@ -578,6 +578,24 @@ static int receive_chunk(long **members)
     return n;
 }
 
+/* A request to rank 0, waited for in sleeps: a blocking MPI_Send of a
+ * chunk's results (over the eager limit, a few kB) spins a core in Open
+ * MPI's progress loop until rank 0's serving thread, which polls every 1-8
+ * ms (later on a loaded machine), takes it. */
+static void send_request(const bytes *out)
+{
+    MPI_Request req;
+    int done = 0;
+    long pause_ns = 50000;
+    MPI_Isend(out->p, (int)out->n, MPI_BYTE, 0, TAG_REQUEST, comm, &req);
+    MPI_Test(&req, &done, MPI_STATUS_IGNORE);
+    while (!done) {
+        nanosleep(&(struct timespec){0, pause_ns}, NULL);
+        pause_ns = pause_ns * 2 < POLL_NS ? pause_ns * 2 : POLL_NS;
+        MPI_Test(&req, &done, MPI_STATUS_IGNORE);
+    }
+}
+
 static int worker_fails(const char *why, char *msg, size_t msgsize)
 {
     snprintf(msg, msgsize, "%s", why);
@@ -595,7 +613,7 @@ static int run_worker(const cli_mpi_job *job, char *msg, size_t msgsize)
     int outcome = CLI_MPI_DONE, open = 0;
     worker_request_reset(&w, job);
     for (; open < IN_FLIGHT && !w.out.oom; open++)
-        MPI_Send(w.out.p, (int)w.out.n, MPI_BYTE, 0, TAG_REQUEST, comm);
+        send_request(&w.out);
     while (open > 0 && outcome == CLI_MPI_DONE) {
         int n = receive_chunk(&members);
         open--;
@@ -611,7 +629,7 @@ static int run_worker(const cli_mpi_job *job, char *msg, size_t msgsize)
         else if (w.out.oom)
             outcome = worker_fails("no memory for a chunk's results", msg, msgsize);
         else {
-            MPI_Send(w.out.p, (int)w.out.n, MPI_BYTE, 0, TAG_REQUEST, comm);
+            send_request(&w.out);
             open++;
         }
     }

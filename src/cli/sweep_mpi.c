@@ -124,17 +124,15 @@ static const cli_mpi_api *load_plugin(void)
     return api;
 }
 
-/* Members per group: the schemes times the steps (sweep.h's numbering);
- * a chunk never splits one, so a point's chaos indicators are computed
- * once.  Only the speed depends on it, never a row. */
+/* Members per group: a chunk never splits one.  The sweep's chunk quantum
+ * (sweep.h): whole points, so a point's chaos indicators are computed once,
+ * and whole rounds of the SIMD lanes, so that a rank's lanes run full (a
+ * chunk of 2 points in 8 lanes costs what 8 points cost).  Only the speed
+ * depends on it, never a row. */
 static long group_size(const hl_sweep *sw)
 {
-    const char *dts = hl_sweep_get_spec(sw)->dts;
-    long ndts = 1;
-    for (const char *c = dts; c != NULL && *c; c++)
-        ndts += *c == ',';
-    long group = (long)hl_sweep_nschemes(sw) * ndts;
-    return group > 0 && hl_sweep_count(sw) % group == 0 ? group : 1;
+    long group = hl_sweep_chunk_quantum(sw);
+    return group > 0 ? group : 1;
 }
 
 typedef struct serve_ctx {
@@ -222,10 +220,14 @@ static void on_terminate(int sig)
     terminated = 1;
 }
 
-/* mpirun passes a Ctrl-C on as SIGTERM: stop as for SIGINT */
+/* mpirun passes a Ctrl-C on as SIGTERM: stop as for SIGINT.  Polled
+ * between messages, after a worker's chunk of results has been stored:
+ * the journal's records are flushed here, once a chunk (deferred). */
 static int stopped(void *arg)
 {
-    (void)arg;
+    serve_ctx *c = arg;
+    if (c->journal != NULL && hl_sweep_journal_flush(c->journal) != 0)
+        return 1;
     return terminated || cli_interrupted();
 }
 
@@ -278,6 +280,8 @@ int cli_sweep_mpi_serve(hl_sweep *sw, hl_sweep_table *tab, hl_sweep_journal *jou
         cli_progress_say(&p, "%ld members on %d rank%s of %d thread%s%s", ntodo, mpi.size,
                          mpi.size == 1 ? "" : "s", mpi.threads, mpi.threads == 1 ? "" : "s",
                          ntodo < c.total ? " (the others done before)" : "");
+    if (journal != NULL)
+        hl_sweep_journal_defer(journal); /* flushed in stopped(), a chunk at a time */
     cli_mpi_job job = job_of(&c);
     job.todo = todo;
     job.ntodo = ntodo;

@@ -45,16 +45,29 @@ static int lanes_wanted(const hl_run *r)
 /* The loop over lanes, compiled, if members can share it: an explicit
  * scheme's run as hl_run_fixed's fast path would take it (no reference,
  * events or progress callback; machine code on) and B * n member-steps
- * enough to pay for compiling it.  NULL: one member at a time. */
+ * enough to pay for compiling it — or the loop already compiled in r: its
+ * cost is paid, and asking again per call would make a small batch after
+ * large ones (a sweep's last members, an MPI rank's small chunk) run one
+ * member at a time, each in the interpreter.  A refusal is kept: the model
+ * asked again for as many member-steps or fewer would refuse again (it
+ * looks up the disk cache, a file, each time).  NULL: one member at a
+ * time. */
 static hl_tape_iter_batch *lane_loop(hl_run *r, long B, long n)
 {
     int L = lanes_wanted(r);
     if (L < 2 || B < 2 || r->stepper == NULL || r->ref_on || r->ev != NULL || r->progress != NULL ||
         !r->jit || !hl_tape_jit_available())
         return NULL;
-    hl_tape *fused = hl_run_fused_(r);
-    if (fused == NULL || !hl_tape_compile_pays(fused, HL_COMPILE_LOOP, B * n))
+    if (r->lane_loop != NULL && hl_tape_iter_batch_lanes(r->lane_loop) == L &&
+        hl_tape_iter_batch_compiled(r->lane_loop))
+        return r->lane_loop;
+    if (B * n <= r->lanes_refused) /* the model's answer grows with the steps: no again */
         return NULL;
+    hl_tape *fused = hl_run_fused_(r);
+    if (fused == NULL || !hl_tape_compile_pays(fused, HL_COMPILE_LOOP, B * n)) {
+        r->lanes_refused = B * n; /* asking looks up the disk cache: once is enough */
+        return NULL;
+    }
     if (r->lane_loop != NULL && hl_tape_iter_batch_lanes(r->lane_loop) != L) {
         hl_tape_iter_batch_free(r->lane_loop);
         r->lane_loop = NULL;

@@ -24,6 +24,7 @@ struct hl_run {
     int fused_failed;           /* no fused tape for this scheme */
     int lanes;                  /* hl_run_set_lanes (0: the default) */
     hl_tape_iter_batch *lane_loop; /* the fused tape over lanes (batch.c), or NULL */
+    long lanes_refused;         /* the most member-steps the cost model refused lanes (batch.c) */
     double ref_tol;
     double *z, *ref, *vals;     /* state, reference, H and observers */
     hl_progress_fn progress;    /* the caller's, or NULL (hl_run_set_progress) */

@@ -7,6 +7,13 @@
  *            gives (bit k of arrays: sweep.h's HL_SWEEP_TRAJ, _CROSS) its
  *            rows i64 and rows * width doubles, FNV-1a of all the above u64
  *
+ * Each record is flushed as it is appended, unless the caller defers the
+ * flushes (hl_sweep_journal_defer): MPI's rank 0 takes in a worker's
+ * chunk of results at once and flushes once after them, since a flush
+ * per record (a system call) was two thirds of its cost per row
+ * (docs/sweep-at-scale.md).  A kill then loses at most the records not
+ * yet flushed, which --resume runs again.
+ *
  * The arrays travel in the journal, so --resume gives them without running
  * a member again (a trajectory may have cost minutes).
  * In the machine's byte order: a journal is for resuming on the machine
@@ -25,6 +32,8 @@
 
 #define MAGIC "HLSWJRN1"
 #define HEADER_BYTES 24
+/* stdio's buffer: a deferred flush writes a chunk's records at once */
+#define BUFFER_BYTES (1 << 16)
 
 struct hl_sweep_journal {
     FILE *fp;
@@ -33,6 +42,7 @@ struct hl_sweep_journal {
     int ncols;
     hl_buf rec; /* one record being built */
     int failed; /* a write failed: the sweep is told to stop */
+    int deferred, pending; /* flushes left to hl_sweep_journal_flush; records not flushed */
 };
 
 static uint32_t array_bits(const hl_sweep *sw)
@@ -201,6 +211,8 @@ hl_status hl_sweep_journal_open(hl_sweep_journal **out, const hl_sweep *sw, cons
     FILE *fp = NULL;
     if (st == HL_OK) { /* the torn tail cut off, then records appended after the sound part */
         fp = fopen(jpath, good > 0 ? "r+b" : "wb");
+        if (fp != NULL)
+            setvbuf(fp, NULL, _IOFBF, BUFFER_BYTES); /* before any other use of fp */
         if (fp == NULL || (good > 0 && (ftruncate(fileno(fp), (off_t)good) != 0 ||
                                         fseek(fp, (long)good, SEEK_SET) != 0)))
             st = hl_error_set(err, HL_EIO, NULL, -1, 0, "cannot write the journal '%s': %s", jpath,
@@ -251,8 +263,22 @@ int hl_sweep_journal_append(const hl_sweep_result *r, void *arg)
         }
     uint64_t sum = fnv((const unsigned char *)b->s, b->len);
     hl_buf_putn(b, (const char *)&sum, 8);
-    if (fwrite(b->s, 1, b->len, j->fp) != b->len || fflush(j->fp) != 0)
+    if (fwrite(b->s, 1, b->len, j->fp) != b->len)
         j->failed = 1;
+    j->pending = 1;
+    return j->deferred ? j->failed : hl_sweep_journal_flush(j);
+}
+
+void hl_sweep_journal_defer(hl_sweep_journal *j)
+{
+    j->deferred = 1;
+}
+
+int hl_sweep_journal_flush(hl_sweep_journal *j)
+{
+    if (j->pending && !j->failed && fflush(j->fp) != 0)
+        j->failed = 1;
+    j->pending = 0;
     return j->failed;
 }
 

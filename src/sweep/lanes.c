@@ -9,7 +9,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "hamlie/tape.h"
 #include "sweep/sweep_impl.h"
+
+/* A round of the lanes across paramsets is kept to whole rounds up to this
+ * many members; beyond it (a sweep over many parameter values) a unit or
+ * chunk holds whole points only, and lanes may run part empty. */
+#define LANES_ROUND_MAX 256
 
 int sweep_lanes_mode(void)
 {
@@ -83,18 +89,54 @@ long sweep_lane_groups(const hl_sweep *sw, const long *list, long n,
     return ngroups;
 }
 
-long sweep_lanes_unit(const hl_sweep *sw, long lane_members, int threads)
+int sweep_lanes_width(const hl_sweep *sw)
 {
-    /* a few units per thread, so that the threads end together, and at
-     * least a round of the lanes each: a lane that finishes early takes the
-     * next member while the unit has one */
-    long u = lane_members / ((long)threads * 4);
-    /* a group of fixed-step members (one scheme and dt) takes one member
-     * a point, a lie group one a dt: a round of the lanes for each group
-     * needs SWEEP_LANES points */
+    /* lie members run in SWEEP_LANES lanes, fixed-step ones in the
+     * machine's (hl_run_fixed_batch: 8 with AVX-512); both powers of 2, so
+     * the wider is a multiple of the other */
+    int width = 1;
+    for (int i = 0; i < sw->nschemes; i++) {
+        int w = !sweep_in_lanes(sw, i) ? 1
+                : sweep_is_lie(sw, i)  ? SWEEP_LANES
+                                       : hl_tape_lanes_native();
+        width = w > width ? w : width;
+    }
+    return width;
+}
+
+/* The lane members of a round of every group's lanes: width points of
+ * each paramset (a group is one paramset's, and consecutive members run
+ * through the paramsets before the next point), when that is a modest
+ * number; else width points. */
+static long lanes_round(const hl_sweep *sw)
+{
     long per_point = 0;
     for (int i = 0; i < sw->nschemes; i++)
         per_point += sweep_in_lanes(sw, i) ? sw->ndts : 0;
-    long least = SWEEP_LANES * (per_point > 0 ? per_point : 1);
-    return u < least ? least : u > 64 ? (least > 64 ? least : 64) : u;
+    long round = (long)sweep_lanes_width(sw) * (per_point > 0 ? per_point : 1);
+    return round * sw->nparamsets <= LANES_ROUND_MAX ? round * sw->nparamsets : round;
+}
+
+long sweep_lanes_unit(const hl_sweep *sw, long lane_members, int threads)
+{
+    /* a few units per thread, so that the threads end together; each a
+     * whole number of rounds of the lanes: a group of B members takes
+     * ceil(B / lanes) rounds, and a round's idle lanes cost as much as
+     * busy ones (B = 4 in 8 lanes: twice the time per member) */
+    long u = lane_members / ((long)threads * 4);
+    long round = lanes_round(sw);
+    long most = round > 64 ? round : 64 / round * round;
+    u = (u + round - 1) / round * round;
+    return u < round ? round : u > most ? most : u;
+}
+
+long hl_sweep_chunk_quantum(const hl_sweep *sw)
+{
+    long group = (long)sw->nschemes * sw->ndts;
+    if (!sweep_has_lanes(sw) || sweep_lanes_mode() == SWEEP_LANES_OFF)
+        return group;
+    long points = sweep_lanes_width(sw);
+    if (group * points * sw->nparamsets <= LANES_ROUND_MAX)
+        points *= sw->nparamsets;
+    return group * points;
 }

@@ -26,7 +26,7 @@ typedef struct paramset_ctx {
     hl_run **run;         /* nschemes */
     hl_chaos *chaos;      /* when spec.chaos */
     hl_run_lanes **lanes; /* nschemes: a lie scheme's lanes, when they pay */
-    char *lanes_tried;    /* nschemes: asked once (fixed-step: the loop's compiling) */
+    char *lanes_tried;    /* nschemes: asked once (fixed-step: 1 no, 2 yes) */
 } paramset_ctx;
 
 /* The rows of members run in lanes (sweep_worker_prepare), until
@@ -344,6 +344,27 @@ static void lie_lanes(paramset_ctx *c, const hl_sweep *sw, sweep_where at, int n
     atomic_fetch_add(&lanes_members, nb);
 }
 
+/* Whether a fixed-step scheme's members run in lanes, decided once per
+ * worker for the sweep's members of (paramset, scheme), as lanes_for does
+ * for lie: asked per group, the cost model would see each unit's few
+ * members alone, and an MPI rank's small chunk would run one member at a
+ * time where the threads' larger units ran in lanes.  The loop is compiled
+ * (or loaded) under the lock; a "no" is kept as one lane. */
+static int fixed_lanes_decided(paramset_ctx *c, const hl_sweep *sw, int scheme, double dt)
+{
+    hl_run *run = c->run[scheme];
+    if (c->lanes_tried[scheme])
+        return c->lanes_tried[scheme] > 1;
+    long members = sw->npoints * sw->ndts; /* of this paramset and scheme */
+    pthread_mutex_lock(&making);
+    int lanes = hl_run_batch_lanes(run, members, dt, sw->spec.t);
+    pthread_mutex_unlock(&making);
+    if (lanes < 2)
+        hl_run_set_lanes(run, 1, NULL); /* never asked again */
+    c->lanes_tried[scheme] = lanes > 1 ? 2 : 1;
+    return lanes > 1;
+}
+
 /* The group shares dt (fits_fixed's groups); hl_run_fixed_batch runs it in
  * lanes where its compiled loop pays, else one member at a time. */
 static void fixed_lanes(paramset_ctx *c, const hl_sweep *sw, sweep_where at, int nb,
@@ -352,16 +373,9 @@ static void fixed_lanes(paramset_ctx *c, const hl_sweep *sw, sweep_where at, int
 {
     hl_run *run = c->run[at.scheme];
     hl_run_set_reference(run, 0, sw->spec.tol); /* as run_member: sweep_in_lanes */
-    int lanes;
-    if (!c->lanes_tried[at.scheme]) { /* the loop compiled (or loaded) under the lock */
-        c->lanes_tried[at.scheme] = 1;
-        pthread_mutex_lock(&making);
-        lanes = hl_run_batch_lanes(run, nb, dt[0], sw->spec.t);
-        pthread_mutex_unlock(&making);
-    } else
-        lanes = hl_run_batch_lanes(run, nb, dt[0], sw->spec.t);
+    int lanes = fixed_lanes_decided(c, sw, at.scheme, dt[0]);
     hl_run_fixed_batch(run, nb, z0, dt[0], sw->spec.t, z, s, st, errs, NULL);
-    if (lanes > 1)
+    if (lanes && nb > 1)
         atomic_fetch_add(&lanes_members, nb);
 }
 
@@ -419,7 +433,8 @@ static paramset_ctx *lane_group(sweep_worker *w, const long *list, const long *o
     return c->status == HL_OK ? c : NULL;
 }
 
-void sweep_worker_prepare(sweep_worker *w, const long *list, long n)
+void sweep_worker_prepare(sweep_worker *w, const long *list, long n, sweep_ran_fn *ran,
+                          void *ran_arg)
 {
     const hl_sweep *sw = w->sw;
     w->ready.n = 0;
@@ -436,14 +451,20 @@ void sweep_worker_prepare(sweep_worker *w, const long *list, long n)
             continue;
         sweep_where at = sweep_locate(sw, ms[0]);
         sweep_point(sw, at.point, w->z0);
-        if (lanes_for(w, c, at.scheme, w->z0) != NULL)
+        if (lanes_for(w, c, at.scheme, w->z0) != NULL) {
             run_in_lanes(w, c, lie_lanes, ms, B);
+            if (ran != NULL)
+                ran(B, ran_arg);
+        }
     }
     ng = sweep_lane_groups(sw, list, n, fits_fixed, 1 /* same dt */, order, start);
     for (long g = 0; g < ng; g++) {
         paramset_ctx *c = lane_group(w, list, order, start, g, ms, &B);
-        if (c != NULL)
-            run_in_lanes(w, c, fixed_lanes, ms, B);
+        if (c == NULL)
+            continue;
+        run_in_lanes(w, c, fixed_lanes, ms, B);
+        if (ran != NULL)
+            ran(B, ran_arg);
     }
     free(order), free(start), free(ms);
 }
@@ -453,7 +474,7 @@ void sweep_member_arrays(const sweep_worker *w, hl_sweep_result *r)
     sweep_arrays_result(&w->arrays, r);
 }
 
-void sweep_member(sweep_worker *w, long m, double *row, hl_status *status, char *reason)
+int sweep_member(sweep_worker *w, long m, double *row, hl_status *status, char *reason)
 {
     const hl_sweep *sw = w->sw;
     sweep_arrays_begin(&w->arrays); /* none for a member that does not run */
@@ -466,20 +487,20 @@ void sweep_member(sweep_worker *w, long m, double *row, hl_status *status, char 
     if (c->status != HL_OK) {
         *status = c->status;
         snprintf(reason, HL_SWEEP_REASON, "%s", c->reason);
-        return;
+        return 0;
     }
-    if (!take_ready(w, m, row, status, reason)) {
+    int ready = take_ready(w, m, row, status, reason);
+    if (!ready) {
         hl_error err;
         hl_error_clear(&err);
         *status = run_member(w, c, at, row, &err);
         if (*status != HL_OK)
             set_reason(reason, "", &err);
     }
-    if (*status != HL_OK)
-        return;
-    if (sw->spec.chaos) {
+    if (*status == HL_OK && sw->spec.chaos) {
         chaos_of(w, c, at, row);
         *status = w->chaos_status;
         snprintf(reason, HL_SWEEP_REASON, "%s", w->chaos_reason);
     }
+    return ready;
 }

@@ -24,7 +24,9 @@ typedef struct pool {
     atomic_long next; /* the next unit to hand out */
     atomic_int stop;  /* a callback asked to stop */
     pthread_mutex_t lock;
-    long done; /* under lock */
+    long done;  /* under lock: members delivered */
+    long shown; /* under lock: the progress line's count, which also holds
+                   members run in lanes and not yet delivered */
     hl_sweep_fn fn;
     void *fn_arg;
     hl_progress_fn progress;
@@ -81,14 +83,34 @@ static long lanes_per_unit(const pool *p, int threads)
     return sweep_lanes_unit(p->sw, lanes, threads);
 }
 
-/* Hands one result out, under the lock. */
-static void deliver(pool *p, const hl_sweep_result *r)
+/* The progress line at p->shown; caller locks.  Non-zero: stop. */
+static int show(pool *p)
+{
+    return p->progress != NULL && p->progress((double)p->shown, (double)p->n, p->progress_arg) != 0;
+}
+
+/* Members that ran in lanes (sweep_worker_prepare): counted as they run,
+ * since their rows are handed out only once the whole unit has run. */
+static void ran_in_lanes(long members, void *arg)
+{
+    pool *p = arg;
+    pthread_mutex_lock(&p->lock);
+    p->shown += members;
+    int stop = show(p);
+    pthread_mutex_unlock(&p->lock);
+    if (stop)
+        atomic_store(&p->stop, 1);
+}
+
+/* Hands one result out, under the lock; counted: ran_in_lanes showed it. */
+static void deliver(pool *p, const hl_sweep_result *r, int counted)
 {
     pthread_mutex_lock(&p->lock);
     p->done++;
+    p->shown += !counted;
     int stop = p->fn != NULL && p->fn(r, p->fn_arg) != 0;
-    if (!stop && p->progress != NULL)
-        stop = p->progress((double)p->done, (double)p->n, p->progress_arg) != 0;
+    if (!stop && !counted)
+        stop = show(p);
     pthread_mutex_unlock(&p->lock);
     if (stop)
         atomic_store(&p->stop, 1);
@@ -109,12 +131,12 @@ static void *work(void *arg)
             break;
         for (long i = p->unit[u]; i < p->unit[u + 1]; i++)
             list[i - p->unit[u]] = member_at(p, i);
-        sweep_worker_prepare(w, list, p->unit[u + 1] - p->unit[u]);
+        sweep_worker_prepare(w, list, p->unit[u + 1] - p->unit[u], ran_in_lanes, p);
         for (long i = p->unit[u]; i < p->unit[u + 1] && !atomic_load(&p->stop); i++) {
             r.member = member_at(p, i);
-            sweep_member(w, r.member, row, &r.status, r.reason);
+            int counted = sweep_member(w, r.member, row, &r.status, r.reason);
             sweep_member_arrays(w, &r);
-            deliver(p, &r);
+            deliver(p, &r, counted);
         }
     }
     free(row);

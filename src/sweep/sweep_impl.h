@@ -104,15 +104,20 @@ hl_status sweep_number(double *v, const char *text, int pos, int len, const char
 typedef struct sweep_worker sweep_worker;
 sweep_worker *sweep_worker_new(const hl_sweep *sw);
 void sweep_worker_free(sweep_worker *w);
-/* Runs member m into row (ncols values), its status and reason.  *chaos_ok
- * says whether the chaos columns of (point, paramset) are cached: members
- * of one group share them. */
-void sweep_member(sweep_worker *w, long m, double *row, hl_status *status, char *reason);
+/* Runs member m into row (ncols values), its status and reason (the
+ * chaos columns of (point, paramset) are kept for the group's members).
+ * Returns 1 if sweep_worker_prepare had run it in lanes, else 0. */
+int sweep_member(sweep_worker *w, long m, double *row, hl_status *status, char *reason);
 
 /* Runs the members among list[0..n-1] (a work unit) that may share SIMD
  * lanes (lanes.c: lie members, and fixed-step ones without --reference or
  * --order) in lanes where that pays, keeping their rows for sweep_member. */
-void sweep_worker_prepare(sweep_worker *w, const long *list, long n);
+typedef void sweep_ran_fn(long members, void *arg);
+/* ran (may be NULL) is told, after each group that ran in lanes, how many
+ * members it ran: the progress line moves as they run, not a unit at a
+ * time. */
+void sweep_worker_prepare(sweep_worker *w, const long *list, long n, sweep_ran_fn *ran,
+                          void *ran_arg);
 /* The members this process has run in lanes (tests): lie members in
  * lanes, fixed-step ones in a batch whose compiled loop runs lanes. */
 long sweep_lanes_members(void);
@@ -136,7 +141,11 @@ int sweep_has_lanes(const hl_sweep *sw);
 long sweep_lane_groups(const hl_sweep *sw, const long *list, long n,
                        int (*fits)(const hl_sweep *sw, sweep_where at), int same_dt, long *order,
                        long *start);
-/* How many members that may run in lanes a work unit should hold. */
+/* The points of one round of the widest lanes the sweep's members use
+ * (1 if none may). */
+int sweep_lanes_width(const hl_sweep *sw);
+/* How many members that may run in lanes a work unit should hold: a
+ * multiple of a round of the lanes, so that they run full. */
 long sweep_lanes_unit(const hl_sweep *sw, long lane_members, int threads);
 /* arrays.c: a thread's collector of one member's arrays (sweep.h,
  * "Arrays"): the trajectory rows of its run's callback and the crossings
