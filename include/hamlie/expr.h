@@ -225,6 +225,11 @@ double hl_expr_cost(const hl_expr *const *e, int n);
 const hl_expr *hl_expr_subst(hl_pool *pool, const hl_expr *e, int n,
                              const char *const *names, const hl_expr *const *vals);
 
+/* hl_expr_subst on each of e[0..ne-1], in place, in one walk: the nodes the
+ * formulas share are substituted once. */
+void hl_expr_subst_each(hl_pool *pool, const hl_expr **e, int ne, int n,
+                        const char *const *names, const hl_expr *const *vals);
+
 /* The same formula with the terms of every sum and the factors of every
  * product in a fixed order that depends on their structure and names only
  * (a - b + c stays signed terms, a*b/c stays divisions), so that writings of

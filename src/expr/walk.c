@@ -213,15 +213,22 @@ static int subst_node(void *arg, const hl_expr *e)
     return 0;
 }
 
-const hl_expr *hl_expr_subst(hl_pool *pool, const hl_expr *e, int n,
-                             const char *const *names, const hl_expr *const *vals)
+void hl_expr_subst_each(hl_pool *pool, const hl_expr **e, int ne, int n,
+                        const char *const *names, const hl_expr *const *vals)
 {
     subst_walk w = {.pool = pool, .n = n, .names = names, .vals = vals};
     hl_memo_init(&w.done);
-    hl_expr_postorder(&e, 1, subst_node, &w);
-    const hl_expr *r = hl_memo_get(&w.done, e)->e;
+    hl_expr_postorder(e, ne, subst_node, &w);
+    for (int i = 0; i < ne; i++)
+        e[i] = hl_memo_get(&w.done, e[i])->e;
     hl_memo_clear(&w.done);
-    return r;
+}
+
+const hl_expr *hl_expr_subst(hl_pool *pool, const hl_expr *e, int n,
+                             const char *const *names, const hl_expr *const *vals)
+{
+    hl_expr_subst_each(pool, &e, 1, n, names, vals);
+    return e;
 }
 
 /* ---- evaluation in double ---------------------------------------------------- */

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "base/buf.h"
+#include "base/memo.h"
 #include "scheme/scheme_impl.h"
 
 struct hl_scheme_stepper {
@@ -153,12 +154,56 @@ static int compile_explicit(hl_scheme_stepper *st, const hl_scheme *s, const hl_
     return rc;
 }
 
-static int has_unknown(const hl_expr *e, const hl_scheme *s)
+static int is_unknown(const hl_scheme *s, const char *name)
 {
     for (int u = 0; u < s->m; u++)
-        if (hl_expr_has_symbol(e, s->unknown[u]))
+        if (strcmp(s->unknown[u], name) == 0)
             return 1;
     return 0;
+}
+
+/* Which nodes depend on an unknown, each node decided once from its
+ * operands: the equations' divisors are asked one by one, and a walk per
+ * divisor and unknown cost gauss3 on a quadratic H seconds (2 degrees of
+ * freedom) to minutes (3). */
+typedef struct unknown_deps {
+    const hl_scheme *s;
+    hl_memo dep; /* node -> .i = 1 if it depends on an unknown */
+} unknown_deps;
+
+static int operand_depends(const unknown_deps *w, const hl_expr *x)
+{
+    return x != NULL && hl_memo_get(&w->dep, x)->i;
+}
+
+static int mark_depends(void *arg, const hl_expr *e) /* operands first */
+{
+    unknown_deps *w = arg;
+    if (hl_memo_get(&w->dep, e) == NULL) {
+        int d = e->kind == HL_SYM ? is_unknown(w->s, e->name)
+                                  : operand_depends(w, e->a) || operand_depends(w, e->b);
+        hl_memo_put(&w->dep, e)->i = d;
+    }
+    return 0;
+}
+
+static int depends(unknown_deps *w, const hl_expr *e)
+{
+    hl_memo_val *v = hl_memo_get(&w->dep, e);
+    if (v == NULL) {
+        hl_expr_postorder(&e, 1, mark_depends, w);
+        v = hl_memo_get(&w->dep, e);
+    }
+    return v->i;
+}
+
+static int has_unknown(const hl_expr *e, const hl_scheme *s)
+{
+    unknown_deps w = {.s = s};
+    hl_memo_init(&w.dep);
+    int r = depends(&w, e);
+    hl_memo_clear(&w.dep);
+    return r;
 }
 
 /* Does the divisor d depend on an unknown and vanish at D = 0 (every
@@ -170,14 +215,15 @@ static int has_unknown(const hl_expr *e, const hl_scheme *s)
  * divisor that cannot be read exactly counts as vanishing. */
 static int vanishes_at_zero(const hl_expr *d, void *arg)
 {
-    const hl_scheme *s = arg;
-    if (!has_unknown(d, s))
+    unknown_deps *w = arg;
+    const hl_scheme *s = w->s;
+    if (!depends(w, d))
         return 0;
     hl_alg_ctx *ctx = hl_system_ctx(s->sys);
     hl_alg a;
     hl_alg_init(&a, ctx);
     const hl_expr *d0 = scheme_at_zero(s, hl_system_pool(s->sys), d);
-    int r = has_unknown(d0, s) || hl_alg_from_expr(&a, d0, ctx, NULL) != HL_OK ||
+    int r = depends(w, d0) || hl_alg_from_expr(&a, d0, ctx, NULL) != HL_OK ||
             hl_alg_is_zero(&a, ctx);
     hl_alg_clear(&a, ctx);
     return r;
@@ -194,8 +240,10 @@ static void simplify(const hl_expr **F, int nF, int all, const hl_scheme *s, hl_
     int nb = hl_alg_ctx_nbase(ctx);
     hl_alg_ctx *aux = NULL;
     hl_alg a;
+    unknown_deps w = {.s = s};
+    hl_memo_init(&w.dep);
     for (int i = 0; i < nF; i++) {
-        if (!all && !hl_expr_divides_by(F[i], vanishes_at_zero, (void *)s))
+        if (!all && !hl_expr_divides_by(F[i], vanishes_at_zero, &w))
             continue;
         if (aux == NULL) {
             const char **names = hl_xmalloc((size_t)(nb + s->m) * sizeof *names);
@@ -210,6 +258,7 @@ static void simplify(const hl_expr **F, int nF, int all, const hl_scheme *s, hl_
         if (hl_alg_from_expr(&a, F[i], aux, NULL) == HL_OK)
             F[i] = hl_alg_to_expr(&a, aux, pool);
     }
+    hl_memo_clear(&w.dep);
     if (aux) {
         hl_alg_clear(&a, aux);
         hl_alg_ctx_free(aux);
@@ -292,7 +341,8 @@ static int solvable(const hl_expr **value, int i, const hl_expr **val, const hl_
 static int eliminate(const hl_expr **val, int *gone, const hl_scheme *s, const hl_expr **lhs,
                      const hl_expr **rhs, hl_pool *pool)
 {
-    int n = 0, more = 1;
+    int n = 0, more = 1, *at = hl_xmalloc((size_t)s->m * sizeof *at);
+    const hl_expr **vals = hl_xmalloc((size_t)s->m * sizeof *vals);
     while (more) { /* one elimination may make another equation solvable */
         more = 0;
         for (int i = 0; i < s->m; i++) {
@@ -300,15 +350,20 @@ static int eliminate(const hl_expr **val, int *gone, const hl_scheme *s, const h
             int u = gone[i] ? -1 : solvable(&r, i, val, s, lhs, rhs, pool);
             if (u < 0)
                 continue;
+            int nv = 0; /* the values so far, in one walk: they share much */
             for (int v = 0; v < s->m; v++)
                 if (val[v] != NULL)
-                    val[v] = hl_expr_subst(pool, val[v], 1, (const char *const *)&s->unknown[u],
-                                           &r);
+                    vals[nv] = val[v], at[nv++] = v;
+            hl_expr_subst_each(pool, vals, nv, 1, (const char *const *)&s->unknown[u], &r);
+            for (int k = 0; k < nv; k++)
+                val[at[k]] = vals[k];
             val[u] = r;
             gone[i] = 1;
             n++, more = 1;
         }
     }
+    free(at);
+    free(vals);
     return n;
 }
 

@@ -188,12 +188,12 @@ def run_random(ctx, count, seed):
 
 def quick_defaults(opts):
     """Under the sanitizers (a build directory named *asan*, or
-    HAMLIE_ZOO_QUICK=1) every call is several times slower: half the zoo,
+    HAMLIE_ZOO_QUICK=1) every call is several times slower: a third of the zoo,
     fewer random cases, a larger CPU budget. Options given win."""
     quick = ("asan" in os.path.abspath(opts.hamlie)
              or os.environ.get("HAMLIE_ZOO_QUICK") == "1")
     for name, normal, sanitized in (("points", 1, 1), ("random", 30, 15),
-                                    ("stride", 1, 2), ("cpu", 5, 20)):
+                                    ("stride", 1, 3), ("cpu", 5, 20)):
         if getattr(opts, name) is None:
             setattr(opts, name, sanitized if quick else normal)
 
