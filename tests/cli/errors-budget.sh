@@ -78,7 +78,7 @@ while read -r name order restricted; do
         upto=6
         [ $sys = KEPLER ] && [ "$want" != exact ] && [ "$want" -lt 6 ] && upto=$((want + 1))
         timed 0 errors -H "${!sys}" --scheme "$name" --order $upto --json || continue
-        py "
+        pyjson "
 want = $want
 if want >= 6:
     assert d['exact_to_order_computed'] and d['order'] == 6, d['order']

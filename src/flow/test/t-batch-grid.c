@@ -16,19 +16,9 @@
 
 #include "hl_test.h"
 #include "hamlie/flow.h"
+#include "hamiltonian.h"
 
 static hl_pool *P;
-
-static hl_tape *hamiltonian(const char *H, int N)
-{
-    static const char *const q[] = {"x", "y"}, *const p[] = {"px", "py"};
-    const hl_expr *h;
-    hl_error err;
-    CHECK_MSG(hl_parse(&h, P, H, &err) == HL_OK, "%s", H);
-    hl_tape *t = NULL;
-    CHECK_MSG(hl_tape_hamiltonian(&t, P, h, N, q, p, 0, NULL, NULL, &err) == HL_OK, "%s", err.msg);
-    return t;
-}
 
 #define MAXOUT 4000
 
@@ -147,7 +137,7 @@ static void check(const char *what, hl_tape *tape, double tol, int lanes, long s
 
 static void test_pendulum_hh(void)
 {
-    hl_tape *pend = hamiltonian("px^2/2 - cos(x)", 1);
+    hl_tape *pend = test_hamiltonian(P, "px^2/2 - cos(x)", 1);
     double zp[12] = {1.3, 0.2, -2.0, 0.5, 0.1, 0, 3.0, 0.3, 2.5, -1.2, 0.7, 0.7};
     double dtp[6] = {0.1, 0.05, 0.3, 0.1, 0.125, 0.2};
     long k0p[6] = {0, 0, 3, 0, 0, 0}, k1p[6] = {150, 40, 90, 0, 200, 33};
@@ -159,7 +149,7 @@ static void test_pendulum_hh(void)
     check("pendulum", pend, 1e-10, 4, 1, 6, zp, dtp, k0p, k1p, stop);
     check("pendulum", pend, 1e-14, 2, 7, 6, zp, dtp, k0p, k1p, stop);
     hl_tape_free(pend);
-    hl_tape *hh = hamiltonian("(px^2+py^2)/2 + (x^2+y^2)/2 + x^2*y - y^3/3", 2);
+    hl_tape *hh = test_hamiltonian(P, "(px^2+py^2)/2 + (x^2+y^2)/2 + x^2*y - y^3/3", 2);
     double zh[20] = {0,   0.1, 0.35, 0.2, 0.05, -0.1, 0.3, 0.25, 0,   0.3,
                      0.3, 0.1, 0.1,  0,   0.2,  0.4,  0,   -0.2, 0.4, 0.1};
     double dth[5] = {0.5, 0.25, 1, 0.5, 0.75};

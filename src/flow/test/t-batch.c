@@ -12,19 +12,9 @@
 
 #include "hl_test.h"
 #include "hamlie/flow.h"
+#include "hamiltonian.h"
 
 static hl_pool *P;
-
-static hl_tape *hamiltonian(const char *H, int N)
-{
-    static const char *const q[] = {"x", "y"}, *const p[] = {"px", "py"};
-    const hl_expr *h;
-    hl_error err;
-    CHECK_MSG(hl_parse(&h, P, H, &err) == HL_OK, "%s", H);
-    hl_tape *t = NULL;
-    CHECK_MSG(hl_tape_hamiltonian(&t, P, h, N, q, p, 0, NULL, NULL, &err) == HL_OK, "%s", err.msg);
-    return t;
-}
 
 typedef struct system {
     const char *name, *H;
@@ -140,7 +130,7 @@ static void test_errors(void)
     hl_flow_batch *b = (hl_flow_batch *)&err;
     CHECK(hl_flow_batch_new(&b, t, 1e-10, 1e-10, 4, &err) == HL_EINVAL && b == NULL);
     hl_tape_free(t);
-    t = hamiltonian("px^2/2 + x^2/2", 1);
+    t = test_hamiltonian(P, "px^2/2 + x^2/2", 1);
     CHECK(hl_flow_batch_new(&b, t, 1e-10, 0, 4, &err) == HL_EINVAL);
     CHECK(hl_flow_batch_new(&b, t, 1e-10, 1e-10, 6, &err) == HL_EINVAL);
     CHECK(hl_flow_batch_new(&b, t, 1e-10, 1e-10, 4, &err) == HL_OK);
@@ -159,7 +149,7 @@ int main(void)
 {
     P = hl_pool_new();
     for (size_t s = 0; s < sizeof systems / sizeof *systems; s++) {
-        hl_tape *t = hamiltonian(systems[s].H, systems[s].N);
+        hl_tape *t = test_hamiltonian(P, systems[s].H, systems[s].N);
         if (t == NULL)
             continue;
         int blow = s == 2 ? 5 : -1;

@@ -12,19 +12,9 @@
 
 #include "hl_test.h"
 #include "hamlie/flow.h"
+#include "hamiltonian.h"
 
 static hl_pool *P;
-
-static hl_tape *hamiltonian(const char *H, int N)
-{
-    static const char *const q[] = {"x", "y"}, *const p[] = {"px", "py"};
-    const hl_expr *h;
-    hl_error err;
-    CHECK_MSG(hl_parse(&h, P, H, &err) == HL_OK, "%s", H);
-    hl_tape *t = NULL;
-    CHECK_MSG(hl_tape_hamiltonian(&t, P, h, N, q, p, 0, NULL, NULL, &err) == HL_OK, "%s", err.msg);
-    return t;
-}
 
 typedef struct system {
     const char *name, *H;
@@ -111,7 +101,7 @@ int main(void)
 #endif
         printf("t-vec: no AVX2 and FMA here: both builds plain\n");
     for (size_t s = 0; s < sizeof systems / sizeof *systems; s++) {
-        hl_tape *t = hamiltonian(systems[s].H, systems[s].N);
+        hl_tape *t = test_hamiltonian(P, systems[s].H, systems[s].N);
         if (t == NULL)
             continue;
         check_system(&systems[s], t, 1e-15);

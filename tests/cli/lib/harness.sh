@@ -5,9 +5,16 @@
 #   err_has TEXT          a substring in the last stderr
 #   py CODE               python on the last stdout as JSON: d, S() sympifies
 #                         with the system's symbols, same(a, b) compares
+#   pyjson CODE           the same without SymPy: d only
 #   finish                print "N passed, N failed" and set the exit status
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
+
+# python3 is the interpreter PATH names, found once: a version manager's
+# shim (pyenv's) costs 0.35 s a call, and a script calls it dozens of times
+HL_PYTHON=$(command python3 -c 'import sys; print(sys.executable)' 2>/dev/null) || HL_PYTHON=
+[ -x "$HL_PYTHON" ] || HL_PYTHON=$(command -v python3)
+python3() { command "$HL_PYTHON" "$@"; }
 pass=0
 fail=0
 
@@ -61,6 +68,16 @@ def every_string(x):
 assert isinstance(d["numeric_zero_test"], bool)
 exec(sys.argv[2])
 PYEOF
+}
+
+# pyjson CODE: py without SymPy (its import, 0.5 s, is most of a check
+# that only reads fields): d is the last stdout as JSON; CODE asserts
+pyjson() {
+    if python3 -c 'import json, sys; d = json.load(open(sys.argv[1])); exec(sys.argv[2])' \
+        "$tmp/out" "$1" >"$tmp/py" 2>&1; then ok; else
+        bad "python check: $1"
+        sed 's/^/    /' "$tmp/py" >&2
+    fi
 }
 
 err_has() {
