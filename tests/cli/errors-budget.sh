@@ -86,6 +86,7 @@ else:
     assert d['order'] == want and d['leading']['k'] == want + 1, (d['order'], want)
 # the check by K(D) has a budget too; past it the output says so
 assert d['two_ways_agree'] is True or d['check_omitted']['reason'] == 'size_budget'
+assert isinstance(d['numeric_zero_test'], bool)  # as py checks every symbolic output
 "
     done
 done <"$tmp/list"
