@@ -297,9 +297,24 @@ static int regular_at_zero(const hl_expr *c, const hl_scheme *s, hl_pool *pool)
     return r;
 }
 
+/* How many of the unknowns not yet eliminated e contains. */
+static int unknowns_in(const hl_expr *e, const hl_expr **val, const hl_scheme *s)
+{
+    int n = 0;
+    for (int u = 0; u < s->m; u++)
+        n += val[u] == NULL && hl_expr_has_symbol(e, s->unknown[u]);
+    return n;
+}
+
 /* The unknown equation i gives explicitly, and its value: U_u = rhs free of
- * U_u, or an equation affine in one unknown with a coefficient free of the
- * unknowns ((Q - q)/D = p gives Q = q + p D).  -1 if none.  An unknown
+ * U_u, or an equation affine in its one unknown left with a coefficient free
+ * of the unknowns ((Q - q)/D = p gives Q = q + p D).  -1 if none.  An
+ * equation in several unknowns is left to Newton even where it is affine
+ * (a Runge-Kutta method's stages on a linear field): solving such a system
+ * by substitution doubles the values' size with each unknown (gauss3 on a
+ * quadratic H coupling 3 pairs: 10 s, 4 pairs: minutes) and loses accuracy
+ * (gauss2 and gauss3 on x^2/2 + y^4/4 + x y/4 erred by 1e-12 or failed to
+ * compile), where Newton solves a linear system in one iteration.  An unknown
  * another equation has given already is not given twice: equation i then
  * stays an equation in the others (else one unknown is counted twice and
  * another is neither kept nor given: a NULL value, or its name left over). */
@@ -315,6 +330,8 @@ static int solvable(const hl_expr **value, int i, const hl_expr **val, const hl_
         }
     }
     const hl_expr *F = subst_known(hl_sub(pool, lhs[i], rhs[i]), val, s, pool);
+    if (unknowns_in(F, val, s) != 1)
+        return -1; /* coupled to other unknowns: Newton's (see above) */
     for (u = 0; u < s->m; u++) {
         if (val[u] != NULL || !hl_expr_has_symbol(F, s->unknown[u]))
             continue;

@@ -58,6 +58,51 @@ assert 0.7 * want < ea / eb < 1.3 * want, (ea, eb, ea / eb, want)
 PYEOF
 }
 
+# ---- stages coupled through a linear part: the map itself -----------------
+# On x^2/2 + y^4/4 + x y/4 the stage equations of the x pair are affine in
+# several stages.  They were solved by substitution, one stage at a time:
+# gauss2 then erred by 1e-12 and gauss3 refused to compile ("a constant
+# subexpression cannot be decided").  Ten steps of each against the same
+# Gauss-Legendre map written here from its Butcher tableau and solved by
+# fixed-point iteration at 40 digits (mpmath): equal to rounding.
+QW='(px^2+py^2)/2 + x^2/2 + y^4/4 + x*y/4'
+for s in gauss2 gauss3; do
+    timed gl run -H "$QW" --scheme $s --dt 0.1 --t 1 --init x=1,y=0,px=0,py=1/2 --no-reference --json
+    if python3 - "$tmp/gl" "${s#gauss}" <<'PYEOF' >"$tmp/py" 2>&1; then ok; else bad "$s on $QW: not the Gauss-Legendre map"; sed 's/^/    /' "$tmp/py" >&2; fi
+import json, sys
+from mpmath import mp, mpf, sqrt
+mp.dps = 40
+def f(z):
+    x, y, px, py = z
+    return [px, py, -(x + y / 4), -(y ** 3 + x / 4)]
+if sys.argv[2] == "2":
+    r = sqrt(3) / 6
+    A = [[mpf(1) / 4, mpf(1) / 4 - r], [mpf(1) / 4 + r, mpf(1) / 4]]
+    b = [mpf(1) / 2] * 2
+else:
+    r = sqrt(15)
+    A = [[mpf(5) / 36, mpf(2) / 9 - r / 15, mpf(5) / 36 - r / 30],
+         [mpf(5) / 36 + r / 24, mpf(2) / 9, mpf(5) / 36 - r / 24],
+         [mpf(5) / 36 + r / 30, mpf(2) / 9 + r / 15, mpf(5) / 36]]
+    b = [mpf(5) / 18, mpf(4) / 9, mpf(5) / 18]
+def step(z, h):
+    s = len(b)
+    K = [f(z)] * s
+    for _ in range(200):
+        K = [f([z[c] + h * sum(A[i][j] * K[j][c] for j in range(s)) for c in range(4)])
+             for i in range(s)]
+    return [z[c] + h * sum(b[i] * K[i][c] for i in range(s)) for c in range(4)]
+z = [mpf(1), mpf(0), mpf(0), mpf(1) / 2]
+for _ in range(10):
+    z = step(z, mpf(1) / 10)
+d = json.load(open(sys.argv[1]))["final_state"]
+got = [d["x"], d["y"], d["px"], d["py"]]
+err = max(abs(g - w) for g, w in zip(got, z))
+print(got, [float(w) for w in z], float(err))
+assert err < 1e-14, float(err)
+PYEOF
+done
+
 order_ratio 4 4 "$K2" "$I2" 0.1 0.05 gauss2
 order_ratio 6 4 "$K2" "$I2" 0.1 0.05 gauss3
 order_ratio 4 6 "$K3" "$I3" 0.1 0.05 gauss2
