@@ -9,7 +9,7 @@
 /* (w x[j]) y[k-j] when weighted, x[j] y[k-j] when not; the fresh x[k] term
  * (j = k > 0) as (w y[0]) x[k] or x[k] y[0], so that x[k], computed last,
  * enters through a single product */
-hl_ev hl_conv_term(hl_em *E, const hl_conv *c, int j, int fresh)
+static hl_ev term(hl_em *E, const hl_conv *c, int j, int fresh)
 {
     int sym_pair = c->sym && 2 * j < c->k;
     hl_ev w = {0};
@@ -27,7 +27,7 @@ hl_ev hl_conv_term(hl_em *E, const hl_conv *c, int j, int fresh)
 }
 
 /* a + b where either may be absent */
-hl_ev hl_conv_plus(hl_em *E, hl_ev a, int has_a, hl_ev b, int has_b, int *has)
+static hl_ev plus(hl_em *E, hl_ev a, int has_a, hl_ev b, int has_b, int *has)
 {
     *has = has_a || has_b;
     if (has_a && has_b)
@@ -45,17 +45,17 @@ hl_ev hl_conv_unrolled(hl_em *E, const hl_conv *c, int *has)
     hl_ev l[4] = {{0}};
     int used[4] = {0};
     for (int i = 0; i < n; i++) {
-        hl_ev t = hl_conv_term(E, c, idx[i], 0);
+        hl_ev t = term(E, c, idx[i], 0);
         l[lane[i]] = used[lane[i]] ? EV_ADD(E, l[lane[i]], t) : t;
         used[lane[i]] = 1;
     }
     free(idx);
     free(lane);
     int h01, h23;
-    hl_ev p01 = hl_conv_plus(E, l[0], used[0], l[1], used[1], &h01);
-    hl_ev p23 = hl_conv_plus(E, l[2], used[2], l[3], used[3], &h23);
-    hl_ev s = hl_conv_plus(E, p01, h01, p23, h23, has);
+    hl_ev p01 = plus(E, l[0], used[0], l[1], used[1], &h01);
+    hl_ev p23 = plus(E, l[2], used[2], l[3], used[3], &h23);
+    hl_ev s = plus(E, p01, h01, p23, h23, has);
     for (int i = 0; i < nf; i++)
-        s = hl_conv_plus(E, s, *has, hl_conv_term(E, c, fresh[i], 1), 1, has);
+        s = plus(E, s, *has, term(E, c, fresh[i], 1), 1, has);
     return s;
 }

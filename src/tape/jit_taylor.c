@@ -52,7 +52,6 @@ typedef struct gem {
     gcc_jit_type *dbl, *dblp;
     gcc_jit_type *vt; /* a value's type: dbl, or a vector of L doubles */
     int L;            /* lanes (1: the single member's recursion) */
-    int vec;          /* the host has 256-bit vectors: convolutions in them */
     gcc_jit_function *fun;
     gcc_jit_block *blk;
     gcc_jit_rvalue *R; /* the register file, the function's parameter */
@@ -356,138 +355,8 @@ static hl_ev g_kept(hl_em *em, int slot)
     return push(E, gcc_jit_lvalue_as_rvalue(E->keep[2 * E->i + slot]), 0, 0);
 }
 
-/* ---- convolutions in vectors of four ------------------------------------------ */
-
-/* A convolution's known terms go to four lanes by position (rule.h), which
- * is what a vector of four doubles does: the terms at positions 4g .. 4g+3
- * are one vector product and the sums one vector add a group, with the
- * same operations lane by lane as hl_conv_unrolled's scalars, so the same
- * bits.  The operands' vectors (x[j] .. x[j-3] and y[k-j] .. y[k-j+3]) are
- * the same from one order to the next, which GCC sees (value numbering),
- * so each is put together once.  Only whole groups go to vectors (the
- * last terms are scalars, see known_sum_vec), so no lane is padded.  Short
- * sums stay scalar: the lanes' reduction costs a few instructions. */
-enum { VEC_LANES = 4, VEC_MIN_TERMS = 8, VEC_TAIL_GROUPS = 2 };
-
-/* w(j) of c's known term at j as a number, 1 for an unweighted one;
- * 0 when the weight is not known now (then the scalar path) */
-static int known_weight(gem *E, const hl_conv *c, int j, double *w)
-{
-    if (c->weighted) {
-        hl_ev v = g_add(&E->em, g_mul(&E->em, c->wa, number(E, (double)j)), c->wb);
-        *w = V(E, v)->v;
-        return V(E, v)->isnum;
-    }
-    *w = c->sym && 2 * j < c->k ? 2.0 : 1.0;
-    return 1;
-}
-
-static gcc_jit_rvalue *vec4(gem *E, gcc_jit_type *v4, gcc_jit_rvalue **els)
-{
-    return gcc_jit_context_new_rvalue_from_vector(E->c, NULL, v4, VEC_LANES, els);
-}
-
-/* the product of the terms at positions 4g .. 4g+3 of the plan idx:
- * (w x[j]) y[k-j] lane by lane, w = 1 where a term has no weight (1 x = x
- * exactly, so the same bits as the scalar x[j] y[k-j]) */
-static gcc_jit_rvalue *group_product(gem *E, gcc_jit_type *v4, const hl_conv *c, const int *idx,
-                                     int g, int *ok)
-{
-    gcc_jit_rvalue *x[VEC_LANES], *y[VEC_LANES], *w[VEC_LANES];
-    int weighted = 0;
-    for (int l = 0; l < VEC_LANES; l++) {
-        int j = idx[VEC_LANES * g + l];
-        double wj;
-        *ok &= known_weight(E, c, j, &wj);
-        x[l] = RV(E, g_coef(&E->em, c->x, j));
-        y[l] = RV(E, g_coef(&E->em, c->y, c->k - j));
-        weighted |= wj != 1.0;
-        w[l] = immediate(E, wj);
-    }
-    gcc_jit_rvalue *xv = vec4(E, v4, x);
-    if (weighted)
-        xv = gcc_jit_context_new_binary_op(E->c, NULL, GCC_JIT_BINARY_OP_MULT, v4, vec4(E, v4, w),
-                                           xv);
-    return gcc_jit_context_new_binary_op(E->c, NULL, GCC_JIT_BINARY_OP_MULT, v4, xv,
-                                         vec4(E, v4, y));
-}
-
-/* lane l of the vector local v */
-static hl_ev vec_lane(gem *E, gcc_jit_lvalue *v, int l)
-{
-    gcc_jit_rvalue *p =
-        gcc_jit_context_new_cast(E->c, NULL, gcc_jit_lvalue_get_address(v, NULL), E->dblp);
-    gcc_jit_type *it = gcc_jit_context_get_type(E->c, GCC_JIT_TYPE_INT);
-    return push(E,
-                gcc_jit_lvalue_as_rvalue(gcc_jit_context_new_array_access(
-                    E->c, NULL, p, gcc_jit_context_new_rvalue_from_int(E->c, it, l))),
-                0, 0);
-}
-
-/* the known terms' sum: the groups but the last VEC_TAIL_GROUPS in vectors,
- * the last groups' terms (which read the newest coefficients of y, made the
- * orders just before) added to the lanes as scalars, so that they wait for
- * no vector to be put together or taken apart (with one such group Kepler
- * ran some 25 % slower than the scalar code in 7 % fewer instructions, with
- * two as fast: the recurrences are chains of latency); 0 (nothing emitted)
- * where it cannot */
-static int known_sum_vec(gem *E, const hl_conv *c, const int *idx, int n, hl_ev *sum)
-{
-    double w;
-    for (int i = 0; i < n; i++) /* checked first: nothing is emitted for nothing */
-        if (!known_weight(E, c, idx[i], &w))
-            return 0;
-    gcc_jit_type *v4 = gcc_jit_type_get_vector(E->dbl, VEC_LANES);
-    int nvec = (n - 1) / VEC_LANES * VEC_LANES - VEC_LANES * (VEC_TAIL_GROUPS - 1);
-    if (nvec < VEC_LANES)
-        return 0;
-    gcc_jit_rvalue *acc = NULL;
-    int ok = 1;
-    for (int g = 0; VEC_LANES * g < nvec; g++) {
-        gcc_jit_rvalue *t = group_product(E, v4, c, idx, g, &ok);
-        acc = acc == NULL
-                  ? t
-                  : gcc_jit_context_new_binary_op(E->c, NULL, GCC_JIT_BINARY_OP_PLUS, v4, acc, t);
-    }
-    char name[32];
-    snprintf(name, sizeof name, "s%d", E->ntmp++);
-    gcc_jit_lvalue *lanes = gcc_jit_function_new_local(E->fun, NULL, v4, name);
-    gcc_jit_block_add_assignment(E->blk, NULL, lanes, acc);
-    hl_ev l[VEC_LANES];
-    for (int i = 0; i < VEC_LANES; i++)
-        l[i] = vec_lane(E, lanes, i);
-    for (int i = nvec; i < n; i++)
-        l[i % VEC_LANES] = g_add(&E->em, l[i % VEC_LANES], hl_conv_term(&E->em, c, idx[i], 0));
-    *sum = g_add(&E->em, g_add(&E->em, l[0], l[1]), g_add(&E->em, l[2], l[3]));
-    return ok;
-}
-
-/* hl_em_ops.conv: hl_conv_unrolled's sum, the known terms in vectors of
- * four where there are enough of them (single member, vector ISA) */
-static hl_ev g_conv(hl_em *em, const hl_conv *c, int *has)
-{
-    gem *E = GE(em);
-    int cap = c->hi >= c->lo ? c->hi - c->lo + 1 : 1;
-    if (E->L != 1 || !E->vec || cap < VEC_MIN_TERMS)
-        return hl_conv_unrolled(em, c, has);
-    int *idx = hl_xmalloc((size_t)cap * sizeof *idx),
-        *lane = hl_xmalloc((size_t)cap * sizeof *lane);
-    int n, nf, fresh[2];
-    hl_conv_plan(c, idx, lane, &n, fresh, &nf);
-    hl_ev s = {0};
-    int done = n >= VEC_MIN_TERMS && known_sum_vec(E, c, idx, n, &s);
-    free(idx);
-    free(lane);
-    if (!done)
-        return hl_conv_unrolled(em, c, has);
-    *has = 1;
-    for (int i = 0; i < nf; i++)
-        s = hl_conv_plus(em, s, 1, hl_conv_term(em, c, fresh[i], 1), 1, has);
-    return s;
-}
-
-static const hl_em_ops g_ops = {g_num, g_coef, g_store, g_add,  g_sub,  g_mul, g_neg,
-                                g_div, g_fma,  g_call,  g_conv, g_keep, g_kept};
+static const hl_em_ops g_ops = {g_num, g_coef, g_store,          g_add,  g_sub, g_mul, g_neg, g_div,
+                                g_fma, g_call, hl_conv_unrolled, g_keep, g_kept};
 
 /* ---- the program -------------------------------------------------------------- */
 
@@ -548,11 +417,6 @@ static void build(gcc_jit_context *c, const void *arg)
     E.dbl = gcc_jit_context_get_type(c, GCC_JIT_TYPE_DOUBLE);
     E.dblp = gcc_jit_type_get_pointer(E.dbl);
     E.vt = E.L == 1 ? E.dbl : gcc_jit_type_get_vector(E.dbl, (size_t)E.L);
-    E.vec = E.L == 1 && hl_jit_host_isa() >= 3;
-    if (E.vec) /* GCC puts vzeroupper before the return only with this
-                * (-O2's); without it the caller's SSE code after a
-                * recursion that used ymm registers ran 20-30 % slower */
-        gcc_jit_context_add_command_line_option(c, "-fexpensive-optimizations");
     gcc_jit_param *prm = gcc_jit_context_new_param(c, NULL, gcc_jit_type_get_pointer(E.vt), "R");
     E.fun = gcc_jit_context_new_function(c, NULL, GCC_JIT_FUNCTION_EXPORTED,
                                          gcc_jit_context_get_type(c, GCC_JIT_TYPE_VOID),

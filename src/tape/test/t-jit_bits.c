@@ -1,14 +1,14 @@
-/* The compiled recursion (libgccjit) at orders where its convolutions run
- * in vectors of four (jit_taylor.c: known sums of 8 terms and more) and
- * with its negations folded into known factors: the interpreter's bits
- * (memcmp) at every coefficient up to order 21, where t-backends (order 12)
- * reaches few vector groups and no long squares.  Sums of every length
- * from 0 to 20 terms, so every count of terms left over a group of four;
- * zero states, so that a zero of the wrong sign (a lane left empty, a
- * negation moved) would show; and the ODEs of the benchmark (the pendulum
- * and Kepler; Henon-Heiles's products are among the ops).  Skipped (passes
- * with a note) without libgccjit.  Six compilations in all, some 0.3 s of
- * CPU each: the CI has little time. */
+/* The compiled recursion (libgccjit) against the interpreter, bit for bit
+ * (memcmp), at every coefficient up to order 21, where t-backends stops at
+ * order 12: convolutions of every length from 0 to 20 terms (every count
+ * of terms left over rule.h's four lanes; squares long enough to have
+ * several), each op with a convolution negated and not (jit_taylor.c folds
+ * a negation into a known factor: (-a) c = a (-c), the ODE step's
+ * fma(-s, h, z) = fma(s, -h, z)), from a state and from zeros of both
+ * signs, so that a zero of the wrong sign would show; and the ODEs of the
+ * benchmark (the pendulum and Kepler; Henon-Heiles's products are among
+ * the ops).  Skipped (passes with a note) without libgccjit.  Six
+ * compilations in all, some 0.3 s of CPU each: the CI has little time. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
