@@ -18,6 +18,11 @@
 #include "tape/tape_impl.h"
 
 #define ORDER 21
+#if defined(__SANITIZE_ADDRESS__)
+#define SANITIZED 1 /* two compilations, not six: the CI's time */
+#else
+#define SANITIZED 0
+#endif
 #define NV 4
 #define NSTATES 2
 
@@ -85,7 +90,8 @@ static void benchmark_systems(void)
     const double kz[NSTATES][NV] = {{0.5, 0, 0, 1.7320508075688772}, {-1, 0.25, -0.5, 0.75}};
     if (same_bits(pend, z, "pendulum") < 0)
         return;
-    same_bits(kepler, kz, "Kepler");
+    if (!SANITIZED)
+        same_bits(kepler, kz, "Kepler");
 }
 
 /* every op with a convolution, negated and not, two at a time */
@@ -113,7 +119,8 @@ static void convolution_ops(void)
     };
     const int n = (int)(sizeof e / sizeof *e);
     const double z[NSTATES][NV] = {{0.3, -0.4, 0.2, -0.6}, {-0.0, 0, -0.0, 0}};
-    for (int i = 0; i + NV <= n; i += NV) { /* four ops a tape: z' = (e_i, ..., e_i+3) */
+    int step = SANITIZED ? n : NV; /* under the sanitizers the first tape alone */
+    for (int i = 0; i + NV <= n; i += step) { /* four ops a tape: z' = (e_i, ..., e_i+3) */
         char what[48];
         snprintf(what, sizeof what, "ops %d to %d", i, i + NV - 1);
         if (same_bits(&e[i], z, what) < 0)
