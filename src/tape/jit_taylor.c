@@ -43,6 +43,7 @@ typedef struct gval {
     gcc_jit_rvalue *r;
     double v;
     int isnum;
+    gcc_jit_rvalue *neg; /* r is -neg (or NULL): see fold_negation */
 } gval;
 
 typedef struct gem {
@@ -59,6 +60,7 @@ typedef struct gem {
     int i, S;              /* the instruction's index; order + 1 */
     gcc_jit_lvalue **coef; /* by register * S + j: the coefficients' locals */
     gcc_jit_lvalue **keep; /* by instruction * 2 + slot: kept values */
+    gcc_jit_rvalue **negof; /* by register * S + j: the local is -this (or NULL) */
     gcc_jit_function *lib[HL_PFN_COUNT];
     gval *v; /* the values made for the current instruction */
     int n, cap, ntmp;
@@ -75,7 +77,7 @@ static hl_ev push(gem *E, gcc_jit_rvalue *r, int isnum, double v)
         E->cap = E->cap ? 2 * E->cap : 64;
         E->v = hl_xrealloc(E->v, (size_t)E->cap * sizeof *E->v);
     }
-    E->v[E->n] = (gval){r, v, isnum};
+    E->v[E->n] = (gval){r, v, isnum, NULL};
     return (hl_ev){.i = E->n++};
 }
 
@@ -141,13 +143,24 @@ static hl_ev g_coef(hl_em *em, hl_slot s, int j)
     int reg = reg_of(E->in, s);
     if (E->t->isconst[reg])
         return number(E, j == 0 ? E->t->rd[reg] : 0.0);
-    return push(E, gcc_jit_lvalue_as_rvalue(local_of(E, reg, j)), 0, 0);
+    hl_ev v = push(E, gcc_jit_lvalue_as_rvalue(local_of(E, reg, j)), 0, 0);
+    E->v[v.i].neg = E->negof[(long)reg * E->S + j];
+    return v;
 }
+
+static gcc_jit_rvalue *temporary(gem *E, gcc_jit_type *type, gcc_jit_rvalue *v);
 
 static void g_store(hl_em *em, hl_slot s, int j, hl_ev v)
 {
     gem *E = GE(em);
-    gcc_jit_block_add_assignment(E->blk, NULL, local_of(E, reg_of(E->in, s), j), RV(E, v));
+    int reg = reg_of(E->in, s);
+    gcc_jit_rvalue *neg = V(E, v)->neg, *r = RV(E, v);
+    if (neg != NULL) { /* the negated value once, in a local its readers share */
+        neg = temporary(E, E->vt, neg);
+        r = gcc_jit_context_new_unary_op(E->c, NULL, GCC_JIT_UNARY_OP_MINUS, E->vt, neg);
+    }
+    gcc_jit_block_add_assignment(E->blk, NULL, local_of(E, reg, j), r);
+    E->negof[(long)reg * E->S + j] = neg;
 }
 
 static int both_known(gem *E, hl_ev a, hl_ev b)
@@ -155,8 +168,34 @@ static int both_known(gem *E, hl_ev a, hl_ev b)
     return V(E, a)->isnum && V(E, b)->isnum;
 }
 
+/* Negation folded into a known factor: (-a) c = a (-c), (-a)/c = a/(-c),
+ * c/(-a) = (-c)/a, exactly (rounding to nearest is symmetric), so that the
+ * negations of the rules (cos's -sum, the -sin of a pendulum's force) cost
+ * no instruction on the chain from one order to the next.  *op_a and *op_b
+ * become the operands to use; 0 when nothing folds. */
+static int fold_negation(gem *E, enum gcc_jit_binary_op op, hl_ev a, hl_ev b, gcc_jit_rvalue **op_a,
+                         gcc_jit_rvalue **op_b)
+{
+    if (op != GCC_JIT_BINARY_OP_MULT && op != GCC_JIT_BINARY_OP_DIVIDE)
+        return 0;
+    if (V(E, a)->neg != NULL && V(E, b)->isnum) {
+        *op_a = V(E, a)->neg;
+        *op_b = immediate(E, -V(E, b)->v);
+        return 1;
+    }
+    if (V(E, b)->neg != NULL && V(E, a)->isnum) {
+        *op_a = immediate(E, -V(E, a)->v);
+        *op_b = V(E, b)->neg;
+        return 1;
+    }
+    return 0;
+}
+
 static hl_ev binary(gem *E, enum gcc_jit_binary_op op, hl_ev a, hl_ev b)
 {
+    gcc_jit_rvalue *fa, *fb;
+    if (fold_negation(E, op, a, b, &fa, &fb))
+        return push(E, gcc_jit_context_new_binary_op(E->c, NULL, op, E->vt, fa, fb), 0, 0);
     if (both_known(E, a, b)) {
         double x = V(E, a)->v, y = V(E, b)->v;
         return number(E, op == GCC_JIT_BINARY_OP_PLUS    ? x + y
@@ -189,8 +228,12 @@ static hl_ev g_neg(hl_em *em, hl_ev a)
     gem *E = GE(em);
     if (V(E, a)->isnum)
         return number(E, -V(E, a)->v);
-    return push(
+    if (V(E, a)->neg != NULL) /* -(-x) = x */
+        return push(E, V(E, a)->neg, 0, 0);
+    hl_ev v = push(
         E, gcc_jit_context_new_unary_op(E->c, NULL, GCC_JIT_UNARY_OP_MINUS, E->vt, RV(E, a)), 0, 0);
+    E->v[v.i].neg = RV(E, a);
+    return v;
 }
 
 /* a fresh local named t<n> holding v (of type type): a call is made once
@@ -259,6 +302,10 @@ static hl_ev g_fma(hl_em *em, hl_ev a, hl_ev b, hl_ev c)
     if (both_known(E, a, b) && V(E, c)->isnum)
         return number(E, fma(V(E, a)->v, V(E, b)->v, V(E, c)->v));
     gcc_jit_function *f = gcc_jit_context_get_builtin_function(E->c, "__builtin_fma");
+    if (V(E, a)->neg != NULL && V(E, b)->isnum) { /* fma(-s, h, z) = fma(s, -h, z) exactly */
+        a = push(E, V(E, a)->neg, 0, 0);
+        b = number(E, -V(E, b)->v);
+    }
     hl_ev args[3] = {a, b, c};
     return push(E, call_per_lane(E, f, 3, args), 0, 0);
 }
@@ -377,9 +424,11 @@ static void build(gcc_jit_context *c, const void *arg)
     E.R = gcc_jit_param_as_rvalue(prm);
     E.blk = gcc_jit_function_new_block(E.fun, "body");
     E.coef = hl_xcalloc((size_t)t->nregs * (size_t)E.S, sizeof *E.coef);
+    E.negof = hl_xcalloc((size_t)t->nregs * (size_t)E.S, sizeof *E.negof);
     E.keep = hl_xcalloc(2 * ((size_t)t->ncode + 1), sizeof *E.keep);
     build_recursion(&E, r->order);
     free(E.coef);
+    free(E.negof);
     free(E.keep);
     free(E.v);
 }
