@@ -230,45 +230,7 @@ static HL_FLOW_VEC void advance_vec(double *z, double *lo, const double *coef, i
     if (i < n)
         advance(z + i, lo + i, coef + (size_t)i * S, 1, p, h);
 }
-
-/* hl_flow_norms (L = 1) for the full window (HL_FLOW_WINDOW = 6 orders,
- * p >= 6) in AVX2: each component's window as a vector of 4 and one of 2;
- * max(a, w) is a > w ? a : w as the scalar code's, the same maxima; the
- * finiteness test the same sum of a - a (0 or NaN in any order).  The
- * scalar loops were 100 instructions of a pendulum step. */
-static HL_FLOW_VEC double norms_vec(double *win, const double *c, int n, int p)
-{
-    const int S = p + 1, lo = p - HL_FLOW_WINDOW + 1;
-    const __m256d abs4 = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffff));
-    const __m128d abs2 = _mm256_castpd256_pd128(abs4);
-    __m256d w4 = _mm256_setzero_pd(), bad4 = w4;
-    __m128d w2 = _mm_setzero_pd(), bad2 = w2;
-    double n0 = 0;
-    for (int i = 0; i < n; i++) {
-        const double *ci = c + (size_t)i * S;
-        double a0 = fabs(ci[0]);
-        n0 = a0 > n0 ? a0 : n0;
-        __m256d a = _mm256_and_pd(_mm256_loadu_pd(ci + lo), abs4);
-        __m128d b = _mm_and_pd(_mm_loadu_pd(ci + lo + 4), abs2);
-        w4 = _mm256_max_pd(a, w4);
-        w2 = _mm_max_pd(b, w2);
-        bad4 = _mm256_add_pd(bad4, _mm256_sub_pd(a, a));
-        bad2 = _mm_add_pd(bad2, _mm_sub_pd(b, b));
-    }
-    _mm256_storeu_pd(win, w4);
-    _mm_storeu_pd(win + 4, w2);
-    __m128d bad =
-        _mm_add_pd(_mm_add_pd(_mm256_castpd256_pd128(bad4), _mm256_extractf128_pd(bad4, 1)), bad2);
-    if (_mm_cvtsd_f64(_mm_add_sd(bad, _mm_unpackhi_pd(bad, bad))) != 0)
-        win[HL_FLOW_WINDOW - 1] = NAN;
-    return n0;
-}
 #else
-static double norms_vec(double *win, const double *c, int n, int p)
-{
-    return hl_flow_norms(win, c, n, p, 1);
-}
-
 static HL_FLOW_VEC void advance_vec(double *z, double *lo, const double *coef, int n, int p,
                                     double h)
 {
@@ -298,9 +260,7 @@ static int step_size(double *h, hl_flow *fl, const double *z, double t, hl_error
         return st;
     fl->cur = c;
     double win[HL_FLOW_WINDOW]; /* the norms of the orders lo..p */
-    double n0 =
-        fl->vec && p >= HL_FLOW_WINDOW ? norms_vec(win, c, n, p) : hl_flow_norms(win, c, n, p, 1);
-    double s = hl_flow_scale(&fl->tols, n0, &fl->eps);
+    double s = hl_flow_scale(&fl->tols, hl_flow_norms(win, c, n, p, 1), &fl->eps);
     *h = hl_flow_step_for(&fl->check, fl->eps, s, &fl->rule, win);
     if (isnan(*h))
         return hl_error_set(err, HL_EDOM, NULL, -1, 0,

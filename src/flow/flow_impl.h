@@ -246,22 +246,19 @@ static inline double hl_flow_scale(const hl_flow_tols *t, double n0, double *eps
     return relative ? t->s_rtol * n0 : t->s_atol;
 }
 
-/* win[j] = max(win[j], |cw[j L]|) for j < nw; returns 0 if every
- * |cw[j L]| is finite, else NaN (the maxima drop NaN; a sum of a - a keeps
- * it, and gives the same in any order: flow.c's vector build sums across
- * components; a sum of the a themselves also overflowed).  Inlined: with
- * nw the constant window (any order from 6 on, one step of the hot loop)
- * it unrolls. */
+/* win[j] = max(win[j], |cw[j L]|) for j < nw, and their sum (the maxima
+ * drop NaN; a sum keeps it).  Inlined: with nw the constant window (any
+ * order from 6 on, one step of the hot loop) it unrolls. */
 static inline __attribute__((always_inline)) double hl_flow_add_norms(double *win, const double *cw,
                                                                       int nw, int L)
 {
-    double bad = 0;
+    double sum = 0;
     for (int j = 0; j < nw; j++) {
         double a = fabs(cw[(size_t)j * L]);
         win[j] = a > win[j] ? a : win[j];
-        bad += a - a;
+        sum += a;
     }
-    return bad;
+    return sum;
 }
 
 /* The norms a step reads off its coefficients: N_0 = max_i |z_i| (the
@@ -273,17 +270,17 @@ static inline __attribute__((always_inline)) double hl_flow_norms(double *win, c
                                                                   int n, int p, int L)
 {
     const int S = p + 1, lo = hl_flow_window_lo(p), nw = p - lo + 1;
-    double n0 = 0, bad = 0;
+    double n0 = 0, sum = 0;
     for (int j = 0; j < HL_FLOW_WINDOW; j++)
         win[j] = 0;
     for (int i = 0; i < n; i++) {
         const double *ci = c + (size_t)i * S * L;
         double a0 = fabs(ci[0]);
         n0 = a0 > n0 ? a0 : n0;
-        bad += nw == HL_FLOW_WINDOW ? hl_flow_add_norms(win, ci + (size_t)lo * L, HL_FLOW_WINDOW, L)
+        sum += nw == HL_FLOW_WINDOW ? hl_flow_add_norms(win, ci + (size_t)lo * L, HL_FLOW_WINDOW, L)
                                     : hl_flow_add_norms(win, ci + (size_t)lo * L, nw, L);
     }
-    if (bad != 0)
+    if (!isfinite(sum))
         win[nw - 1] = NAN;
     return n0;
 }

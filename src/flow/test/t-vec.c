@@ -7,7 +7,7 @@
  * (two eccentricities) and Henon-Heiles at two tolerances, and a field of
  * 3 components (an odd count: the vector build's state update does two
  * components at a time, the last alone) at three, the lowest at an order
- * below the window of 6 (its norms the scalar code's in either build).  On a
+ * below the window of 6 (the step rule's loops not unrolled).  On a
  * machine without AVX2 both runs are plain and the test says so. */
 #include <math.h>
 #include <stdlib.h>
