@@ -143,6 +143,14 @@ void hl_tape_taylor_arb(arb_ptr out, arb_srcptr in, int order, slong prec, hl_ta
  * HL_EINVAL if the tape is not square. */
 hl_status hl_tape_taylor_ode_d(double *z, int order, hl_tape *tape, hl_error *err);
 hl_status hl_tape_taylor_ode_arb(arb_ptr z, int order, slong prec, hl_tape *tape, hl_error *err);
+/* hl_tape_taylor_ode_d without its copies (they were a tenth of the
+ * integrator's cost a step outside the recursion): z[0..n-1] the state,
+ * and the coefficients lent from the tape's register file,
+ * (*rows)[i*(order+1) + k] = z_i^[k], valid until the next Taylor or
+ * native call on the tape (hl_tape_eval_d leaves them).  Fails (*rows
+ * NULL) where hl_tape_taylor_ode_d does. */
+hl_status hl_tape_taylor_ode_lend(const double **rows, hl_tape *tape, const double *z, int order,
+                                  hl_error *err);
 
 /* ---- native code (opt-in) ------------------------------------------------
  * Compile the Taylor-ODE recursion at this order to machine code: one

@@ -140,22 +140,19 @@ static inline double hl_flow_ln_quot(double s, double N)
     return x >= DBL_MIN && x <= DBL_MAX ? log(x) : log(s) - log(N);
 }
 
-/* The step from win[k - lo] = N_k, k = lo..p (lo = hl_flow_window_lo), for
- * the tolerance eps of this step, the scale s = eps / tol of the state (1
- * in absolute mode, |z| in relative; > 0 and normal) and the rule's order
- * p, tolerance ln_tol and step ratio (eps = tol max(1, |z|) when atol =
- * rtol = tol).  eps may underflow where s does not (the Arb integrator at
- * many digits): then the test of the window below fails and the log domain
- * decides.  Returns > 0; +inf when every N_k of the window is 0; NaN when
- * one is not finite.  *check = 1 if the step is to be checked
- * (hl_flow_shrink), else 0. */
-static inline double hl_flow_step_for(int *check, double eps, double s, const hl_flow_rule *rule,
-                                      const double *win)
+/* hl_flow_step_for's body for a window of nw orders, inlined twice: with
+ * nw the constant HL_FLOW_WINDOW (every order from 6 on) its loops unroll,
+ * the same operations in the same order (the same bits), where the loops'
+ * counting was a fifth of the rule's instructions. */
+static inline __attribute__((always_inline)) double hl_flow_step_window(int *check, double eps,
+                                                                        double s,
+                                                                        const hl_flow_rule *rule,
+                                                                        const double *win, int nw)
 {
-    const int p = rule->p, lo = hl_flow_window_lo(p);
+    const int p = rule->p, lo = p - nw + 1;
     double sum = 0;
-    for (int k = lo; k <= p; k++)
-        sum += win[k - lo]; /* NaN or inf if a norm is */
+    for (int j = 0; j < nw; j++)
+        sum += win[j]; /* NaN or inf if a norm is */
     *check = 1; /* unless the window vouches for the step */
     if (!isfinite(sum))
         return NAN;
@@ -168,7 +165,7 @@ static inline double hl_flow_step_for(int *check, double eps, double s, const hl
      * recursion, step, state), and order p first, p-1 only where h broke
      * its bound (a third of Kepler's steps; one log fewer on average) made
      * that chain longer, the pendulum's steps 4 % slower. */
-    const double Np = win[p - lo], Nq = win[p - 1 - lo];
+    const double Np = win[nw - 1], Nq = win[nw - 2];
     double lp = Np > 0 ? hl_flow_ln_quot(s, Np) / p : INFINITY;
     double lq = Nq > 0 ? hl_flow_ln_quot(s, Nq) / (p - 1) : INFINITY;
     double h = exp((lq < lp ? lq : lp) + rule->ln_ratio);
@@ -176,8 +173,8 @@ static inline double hl_flow_step_for(int *check, double eps, double s, const hl
      * without logs or branches (most steps end here)... */
     double worst = 0, pw = hl_flow_powi(h, lo);
     double c = lo > 1 ? exp(-HL_FLOW_SLACK * (HL_FLOW_WINDOW - 2)) : exp(-HL_FLOW_SLACK * (p - 2));
-    for (int k = lo; k <= p - 2; k++, pw *= h, c *= exp(HL_FLOW_SLACK)) {
-        double t = win[k - lo] * pw * c; /* NaN if N_k = 0 and h^k = inf: no bound */
+    for (int j = 0; j < nw - 2; j++, pw *= h, c *= exp(HL_FLOW_SLACK)) {
+        double t = win[j] * pw * c; /* NaN if N_k = 0 and h^k = inf: no bound */
         worst = t > worst ? t : worst;
     }
     *check = p < HL_FLOW_CHECK_BELOW;
@@ -204,6 +201,23 @@ static inline double hl_flow_step_for(int *check, double eps, double s, const hl
         }
     }
     return h;
+}
+
+/* The step from win[k - lo] = N_k, k = lo..p (lo = hl_flow_window_lo), for
+ * the tolerance eps of this step, the scale s = eps / tol of the state (1
+ * in absolute mode, |z| in relative; > 0 and normal) and the rule's order
+ * p, tolerance ln_tol and step ratio (eps = tol max(1, |z|) when atol =
+ * rtol = tol).  eps may underflow where s does not (the Arb integrator at
+ * many digits): then the test of the window below fails and the log domain
+ * decides.  Returns > 0; +inf when every N_k of the window is 0; NaN when
+ * one is not finite.  *check = 1 if the step is to be checked
+ * (hl_flow_shrink), else 0. */
+static inline double hl_flow_step_for(int *check, double eps, double s, const hl_flow_rule *rule,
+                                      const double *win)
+{
+    const int nw = rule->p - hl_flow_window_lo(rule->p) + 1;
+    return nw == HL_FLOW_WINDOW ? hl_flow_step_window(check, eps, s, rule, win, HL_FLOW_WINDOW)
+                                : hl_flow_step_window(check, eps, s, rule, win, nw);
 }
 
 /* The tolerances of a double flow (flow.c, batch.c): atol, rtol, and

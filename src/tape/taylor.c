@@ -50,7 +50,11 @@ void hl_tape_taylor_d(double *out, const double *in, int order, hl_tape *t)
         memcpy(out + (size_t)j * S, t->td + (size_t)t->outreg[j] * S, (size_t)S * sizeof *out);
 }
 
-hl_status hl_tape_taylor_ode_d(double *z, int order, hl_tape *t, hl_error *err)
+/* The recursion with the state's order 0 in the input registers; the
+ * coefficients stay in the register file (inputs first: register i's row
+ * is input i's). */
+static inline __attribute__((always_inline)) hl_status
+run_ode(hl_tape *t, const double *z, size_t stride, int order, hl_error *err)
 {
     if (t->nin != t->nout)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0,
@@ -58,17 +62,31 @@ hl_status hl_tape_taylor_ode_d(double *z, int order, hl_tape *t, hl_error *err)
                             t->nin, t->nout);
     if (order < 0)
         return hl_error_set(err, HL_EINVAL, NULL, -1, 0, "negative Taylor order %d", order);
-    layout_d(t, order);
+    if (t->ts != order + 1) /* the call was a sixth of the copies this saves */
+        layout_d(t, order);
     const int S = t->ts, n = t->nin;
     double *td = t->td;
     for (int i = 0; i < n; i++)
-        td[(size_t)i * S] = z[(size_t)i * S];
-    if (t->native_fn != NULL && t->native_order == order) {
+        td[(size_t)i * S] = z[(size_t)i * stride];
+    if (t->native_fn != NULL && t->native_order == order)
         t->native_fn(td);
-        memcpy(z, td, (size_t)n * S * sizeof *z);
-        return HL_OK;
-    }
-    hl_prog_run_ode(t->tprog, order); /* k = 0 .. order-1, each with z[k+1] = f[k] / (k+1) */
-    memcpy(z, td, (size_t)n * S * sizeof *z);
+    else
+        hl_prog_run_ode(t->tprog, order); /* k = 0 .. order-1, z[k+1] = f[k] / (k+1) */
     return HL_OK;
+}
+
+hl_status hl_tape_taylor_ode_d(double *z, int order, hl_tape *t, hl_error *err)
+{
+    hl_status st = run_ode(t, z, (size_t)order + 1, order, err);
+    if (st == HL_OK)
+        memcpy(z, t->td, (size_t)t->nin * t->ts * sizeof *z);
+    return st;
+}
+
+hl_status hl_tape_taylor_ode_lend(const double **rows, hl_tape *t, const double *z, int order,
+                                  hl_error *err)
+{
+    hl_status st = run_ode(t, z, 1, order, err);
+    *rows = st == HL_OK ? t->td : NULL;
+    return st;
 }

@@ -448,6 +448,53 @@ static void test_native_kept(void)
     CHECK(system(cmd) == 0);
 }
 
+/* A callback that runs the flow's own tape in Taylor mode at another
+ * order: the flow reads the step's coefficients in the tape's registers
+ * (hl_tape_taylor_ode_lend), which that call lays out anew; the flow must
+ * copy them before it calls back, so that the run's outputs are those of a
+ * run whose callback leaves the tape alone, to the bit. */
+typedef struct reuse {
+    hl_tape *t;
+    int calls, use_tape;
+    double *out;
+} reuse;
+
+static int reuse_tape(double t, const double *z, void *arg)
+{
+    reuse *r = arg;
+    if (r->use_tape) {
+        double c[2 * 8] = {0};
+        c[0] = z[0] + 1; /* another state, another order: other registers */
+        c[8] = z[1] - 1;
+        hl_error err;
+        CHECK(hl_tape_taylor_ode_d(c, 7, r->t, &err) == HL_OK);
+    }
+    memcpy(r->out + 2 * r->calls++, z, 2 * sizeof *z);
+    return 0;
+}
+
+static void test_callback_reuses_tape(void)
+{
+    hl_tape *t = pendulum();
+    double ts[40], z0[2] = {1.3, 0}, out[2][2 * 40];
+    for (int i = 0; i < 40; i++)
+        ts[i] = 0.77 * (i + 1); /* inside steps */
+    for (int pass = 0; pass < 2; pass++) {
+        hl_flow *fl = NULL;
+        hl_error err;
+        CHECK(hl_flow_new(&fl, t, 1e-12, 1e-12, &err) == HL_OK);
+        reuse r = {t, 0, pass, out[pass]};
+        CHECK(hl_flow_run(fl, 0, z0, ts, 40, reuse_tape, &r, &err) == HL_OK);
+        CHECK(r.calls == 40);
+        hl_flow_free(fl);
+    }
+    CHECK_MSG(memcmp(out[0], out[1], sizeof out[0]) == 0, "x at t = %g: %.17g / %.17g", ts[39],
+              out[0][78], out[1][78]);
+    CHECK_MSG(fabs(out[0][79] * out[0][79] / 2 - cos(out[0][78]) + cos(1.3)) < 1e-12,
+              "energy %.17g", out[0][79] * out[0][79] / 2 - cos(out[0][78]));
+    hl_tape_free(t);
+}
+
 int main(void)
 {
     /* the cost model without the disk cache, whose entries (a kept
@@ -462,6 +509,7 @@ int main(void)
     test_kepler();
     test_blowup();
     test_callback_stop();
+    test_callback_reuses_tape();
     test_native_for();
     test_native_kept();
     hl_pool_free(P);
