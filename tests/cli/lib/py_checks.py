@@ -3,18 +3,18 @@ Python: SymPy is imported once (0.9 s a process, most of what a check cost
 when each had its own), and each check runs in a namespace of its own, as
 in its own process before.
 
-usage: py_checks.py QUEUE_DIR COUNT SCRIPT
+usage: py_checks.py [--only-json] QUEUE_DIR COUNT SCRIPT
 QUEUE_DIR holds N.json (the stdout the check reads), N.code (the check)
 and N.line (where the script called py), N = 1..COUNT.  Prints each
-failure to stderr, and "PASSED FAILED" on stdout."""
+failure to stderr, and "PASSED FAILED" on stdout.  --only-json (the
+sanitizer build): the prelude alone, the JSON read; the checks' own
+mathematics is the normal build's, and SymPy is not imported."""
 
 import contextlib
 import io
 import os
 import sys
 import traceback
-
-import sympy  # noqa: F401  (imported once, for every check's prelude)
 
 # What each check had in scope when it was a process of its own
 PRELUDE = '''
@@ -39,13 +39,27 @@ assert isinstance(d["numeric_zero_test"], bool)
 '''
 
 
+# The prelude's reading of the JSON, without SymPy (--only-json)
+JSON_PRELUDE = '''
+import json, sys
+d = json.load(open(sys.argv[1]))
+sy = d["symbols"]
+names = sy["coordinates"] + sy["momenta"] + sy["parameters"] + [sy["step"]]
+assert isinstance(d["numeric_zero_test"], bool)
+'''
+
+
 def run_check(json_path, code):
-    """None when the check passes, else what it printed and its traceback."""
+    """None when the check passes, else what it printed and its traceback.
+    code None: the prelude alone, without SymPy."""
     said = io.StringIO()
     sys.argv = ["-", json_path, code]
     scope = {"__name__": "__main__", "__builtins__": __builtins__}
     try:
         with contextlib.redirect_stdout(said), contextlib.redirect_stderr(said):
+            if code is None:
+                exec(compile(JSON_PRELUDE, "<py prelude>", "exec"), scope)
+                return None
             exec(compile(PRELUDE, "<py prelude>", "exec"), scope)
             exec(compile(code, "<py check>", "exec"), scope)
     except SystemExit as e:  # exit(0) passed, as the process's status did
@@ -58,13 +72,18 @@ def run_check(json_path, code):
 
 
 def main():
-    queue, count, script = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+    args = sys.argv[1:]
+    only_json = args[:1] == ["--only-json"]
+    queue, count, script = args[-3], int(args[-2]), args[-1]
+    if only_json:
+        print("%s: sanitizer build: its %d SymPy checks read their JSON only "
+              "(the normal build runs them)" % (script, count), file=sys.stderr)
     passed = failed = 0
     for n in range(1, count + 1):
         base = os.path.join(queue, str(n))
         code = open(base + ".code").read()
         line = open(base + ".line").read().strip()
-        why = run_check(base + ".json", code)
+        why = run_check(base + ".json", None if only_json else code)
         if why is None:
             passed += 1
             continue
