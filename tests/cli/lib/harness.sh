@@ -56,8 +56,9 @@ has_text() {
 # `S(expr)` = sympify with the system's symbols, same(a, b); CODE asserts.
 # The checks are queued and run at finish, in order, in one Python
 # (lib/py_checks.py): SymPy's import, 0.9 s, was most of a check's cost.
-# A check reads only its own copy of the stdout; the shell cannot wait on
-# its result (use pyjson for that).  Under the sanitizers each only reads
+# A check reads its own copy of the stdout, and any other file it opens
+# must stay as it is until finish; the shell cannot wait on its result
+# (use pyjson for that).  Under the sanitizers each only reads
 # its JSON (the prelude: symbols, numeric_zero_test), as said at finish.
 hl_py_count=0
 py() {
