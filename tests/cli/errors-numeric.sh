@@ -18,10 +18,11 @@ compare() {
     shift
     "$HAMLIE" errors "$@" --invariants-degree 0 --json >"$tmp/sym" 2>"$tmp/err" || { bad "symbolic $*"; return; }
     run 0 errors "$@" --numeric --at "$at" --json
-    cp "$tmp/sym" "$tmp/sym.json"
+    compared=$((compared + 1)) # py runs at finish: a file of its own for each
+    cp "$tmp/sym" "$tmp/sym$compared.json"
     py "
 import math
-s = json.load(open('$tmp/sym.json'))
+s = json.load(open('$tmp/sym$compared.json'))
 pt = {Symbol(k): v for k, v in d['at'].items()}
 ev = lambda f: float(S(f).subs(pt).evalf(30))
 for fs, fn in zip(s['fields'], d['fields']):
@@ -39,6 +40,7 @@ assert d['order'] == s['order'], (d['order'], s['order'])
 "
 }
 
+compared=0
 compare 'q=1.3,p=0.2' -H "$PEND" --scheme rk4 --order 6
 compare 'q=-0.4,p=0.9' -H "$PEND" --scheme gauss2 --order 5
 compare 'x=0.1,y=-0.3,px=0.25,py=0.4' -H "$HH" --scheme implicit-midpoint --order 4

@@ -17,51 +17,82 @@ HAMLIE=${1:?usage: exact-orbits.sh path/to/hamlie}
 . "$(dirname "$0")/lib/harness.sh"
 PEND='p^2/2 - cos(q)'
 
-# pend_check CSV: every row of a pendulum run (t,q,p,...) against the closed
-# form through its first row, within tol (relative to the amplitude)
+# pend_check CSV TOL LABEL: every row of a pendulum run (t,q,p,...) against the closed
+# form through its first row, within TOL (relative to the amplitude); queued,
+# run by pend_check_all before finish
 pend_check() {
-    python3 - "$1" "$2" <<'PYEOF'
+    pend_n=$((pend_n + 1))
+    cp "$1" "$tmp/pend$pend_n.csv"
+    printf '%s\t%s\t%s\n' "$tmp/pend$pend_n.csv" "$2" "$3" >>"$tmp/pend.list"
+}
+pend_n=0
+# pend_check_all: the queued runs in one python (mpmath's import, 0.8 s, was
+# most of a check's cost)
+pend_check_all() {
+    local counts
+    counts=$(python3 - "$tmp/pend.list" <<'PYEOF'
 import csv, sys
 from mpmath import mp, mpf, ellipfun, ellipk, ellipf, asin, atan2, floor, pi, sin, cos, sqrt
 mp.dps = 40
-rows = [[float(x) for x in r] for r in list(csv.reader(open(sys.argv[1])))[1:]]
-tol = float(sys.argv[2])
-q0, p0 = mpf(rows[0][1]), mpf(rows[0][2])
-a = max(abs(q0), abs(p0))
-mp.dps = 40 + max(0, int(-2 * mp.log10(a)))  # E + 1 is a^2/2: no cancellation
-E = p0**2 / 2 - cos(q0)
-def state(t):
-    if E < 1:  # libration: sin(q/2) = k sn(t + t0 | k^2), p = 2 k cn
-        k = sqrt((1 + E) / 2); m = k * k
-        u = ellipf(asin(min(mpf(1), sin(q0 / 2) / k)), m)
-        t0 = u if p0 >= 0 else 2 * ellipk(m) - u
-        return 2 * asin(k * ellipfun('sn', t + t0, m)), 2 * k * ellipfun('cn', t + t0, m)
-    assert q0 == 0  # rotation from q = 0: q = 2 am(k0 t | 1/k0^2), p = 2 k0 dn
-    k0 = sqrt((1 + E) / 2); m = 1 / k0**2; s = 1 if p0 > 0 else -1
-    u = k0 * t; K = ellipk(m); n = floor(u / (2 * K)); r = u - 2 * n * K
-    am = n * pi + atan2(ellipfun('sn', r, m), ellipfun('cn', r, m))
-    return s * 2 * am, s * 2 * k0 * ellipfun('dn', u, m)
-worst = max(max(abs(q - r[1]), abs(p - r[2])) / a for r in rows for q, p in [state(mpf(r[0]))])
-assert worst < tol, (worst, tol)
+
+def check(path, tol):
+    rows = [[float(x) for x in r] for r in list(csv.reader(open(path)))[1:]]
+    tol = float(tol)
+    q0, p0 = mpf(rows[0][1]), mpf(rows[0][2])
+    a = max(abs(q0), abs(p0))
+    mp.dps = 40 + max(0, int(-2 * mp.log10(a)))  # E + 1 is a^2/2: no cancellation
+    E = p0**2 / 2 - cos(q0)
+    def state(t):
+        if E < 1:  # libration: sin(q/2) = k sn(t + t0 | k^2), p = 2 k cn
+            k = sqrt((1 + E) / 2); m = k * k
+            u = ellipf(asin(min(mpf(1), sin(q0 / 2) / k)), m)
+            t0 = u if p0 >= 0 else 2 * ellipk(m) - u
+            return 2 * asin(k * ellipfun('sn', t + t0, m)), 2 * k * ellipfun('cn', t + t0, m)
+        assert q0 == 0  # rotation from q = 0: q = 2 am(k0 t | 1/k0^2), p = 2 k0 dn
+        k0 = sqrt((1 + E) / 2); m = 1 / k0**2; s = 1 if p0 > 0 else -1
+        u = k0 * t; K = ellipk(m); n = floor(u / (2 * K)); r = u - 2 * n * K
+        am = n * pi + atan2(ellipfun('sn', r, m), ellipfun('cn', r, m))
+        return s * 2 * am, s * 2 * k0 * ellipfun('dn', u, m)
+    worst = max(max(abs(q - r[1]), abs(p - r[2])) / a for r in rows for q, p in [state(mpf(r[0]))])
+    assert worst < tol, (worst, tol)
+
+passed = failed = 0
+for line in open(sys.argv[1]).read().splitlines():
+    path, tol, label = line.split("\t")
+    mp.dps = 40
+    try:
+        check(path, tol)
+        passed += 1
+    except Exception as e:
+        failed += 1
+        print("FAIL: %s: %r" % (label, e), file=sys.stderr)
+print(passed, failed)
 PYEOF
+)
+    if [[ $counts =~ ^([0-9]+)\ ([0-9]+)$ ]] && [ $((BASH_REMATCH[1] + BASH_REMATCH[2])) -eq "$pend_n" ]; then
+        pass=$((pass + BASH_REMATCH[1]))
+        fail=$((fail + BASH_REMATCH[2]))
+    else
+        bad "the $pend_n pendulum checks did not run: '$counts'"
+    fi
 }
 
 # the reproduction of the issue: q(4) = 0.9602, not 11.11
 run 0 run -H "$PEND" --scheme exact --dt 0.5 --t 4 --init q=0,p=1.8 --out "$tmp/lib.csv"
-pend_check "$tmp/lib.csv" 1e-13 && ok || bad "libration from the bottom"
+pend_check "$tmp/lib.csv" 1e-13 "libration from the bottom"
 run 0 run -H "$PEND" --scheme exact --dt 0.5 --t 20 --init q=0,p=-1.8 --out "$tmp/libn.csv"
-pend_check "$tmp/libn.csv" 1e-13 && ok || bad "libration from the bottom, p < 0"
+pend_check "$tmp/libn.csv" 1e-13 "libration from the bottom, p < 0"
 run 0 run -H "$PEND" --scheme exact --dt 0.5 --t 40 --init q=0,p=1.99 --out "$tmp/sep1.csv"
-pend_check "$tmp/sep1.csv" 1e-11 && ok || bad "libration near the separatrix, p0 = 1.99"
+pend_check "$tmp/sep1.csv" 1e-11 "libration near the separatrix, p0 = 1.99"
 run 0 run -H "$PEND" --scheme exact --dt 0.5 --t 40 --init q=3.14,p=0 --out "$tmp/sep2.csv"
-pend_check "$tmp/sep2.csv" 1e-11 && ok || bad "libration near the separatrix, q0 = 3.14"
+pend_check "$tmp/sep2.csv" 1e-11 "libration near the separatrix, q0 = 3.14"
 run 0 run -H "$PEND" --scheme exact --dt 0.5 --t 40 --init q=0,p=2.5 --out "$tmp/rot.csv"
-pend_check "$tmp/rot.csv" 1e-12 && ok || bad "rotation"
+pend_check "$tmp/rot.csv" 1e-12 "rotation"
 run 0 run -H "$PEND" --scheme exact --dt 0.5 --t 40 --init q=0,p=-2.01 --out "$tmp/rotn.csv"
-pend_check "$tmp/rotn.csv" 1e-12 && ok || bad "rotation near the separatrix, p < 0"
+pend_check "$tmp/rotn.csv" 1e-12 "rotation near the separatrix, p < 0"
 for q0 in 1e-8 1e-6 1e-300; do
     run 0 run -H "$PEND" --scheme exact --dt 0.5 --t 20 --init q=$q0,p=0 --out "$tmp/tiny.csv"
-    pend_check "$tmp/tiny.csv" 1e-13 && ok || bad "tiny amplitude q0 = $q0"
+    pend_check "$tmp/tiny.csv" 1e-13 "tiny amplitude q0 = $q0"
 done
 
 # periods: 4 K(k^2) for a libration, 2 K(1/k0^2)/k0 for a rotation, 2 pi at
@@ -130,4 +161,5 @@ same_as_lie 'p^2/2 + (1-exp(-q))^2' q=0,p=-1.2 1e-13
 same_as_lie 'p^2/2 + q^4/4 - q^2/2' q=1,p=0.1 1e-13
 same_as_lie 'p^2/2 + q^4/4 - q^2/2' q=-0.5,p=0 1e-13
 same_as_lie 'p^2/2 + q^4/4 - q^2/2' q=0.2,p=-0.8 1e-13
+pend_check_all
 finish

@@ -24,6 +24,8 @@ check() {
     cp "$tmp/out" "$tmp/$name.json"
     run 0 lie -H "$H" --order "$order"
     cp "$tmp/out" "$tmp/$name.txt"
+    # the sanitizer build prints the same (harness.sh): SymPy's reading, 15 s, is the normal build's
+    [ "$HL_SANITIZED" = 1 ] && return
     if "$PY" - "$tmp/$name.json" "$tmp/$name.txt" "$H" "$kind" "$peer" <<'PYEOF' >"$tmp/py" 2>&1; then ok; else bad "$name: printed forms disagree"; sed 's/^/    /' "$tmp/py" >&2; fi
 import json, random, sys
 import sympy as sp
