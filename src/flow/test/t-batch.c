@@ -12,7 +12,7 @@
 
 #include "hl_test.h"
 #include "hamlie/flow.h"
-#include "hamiltonian.h"
+#include "tape/test/hamiltonian.h"
 
 static hl_pool *P;
 

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "hl_test.h"
+#include "tape/test/hamiltonian.h"
 #include "hamlie/tape.h"
 #include "tape/tape_impl.h"
 
@@ -111,17 +112,6 @@ static void test_operations(void)
         CHECK_MSG(covered[op], "no case for %s", hl_op_name((hl_op)op));
 }
 
-static hl_tape *hamiltonian(const char *H, int N)
-{
-    static const char *const q[] = {"x", "y"}, *const p[] = {"px", "py"};
-    const hl_expr *h;
-    hl_error err;
-    CHECK_MSG(hl_parse(&h, P, H, &err) == HL_OK, "%s", H);
-    hl_tape *t = NULL;
-    CHECK_MSG(hl_tape_hamiltonian(&t, P, h, N, q, p, 0, NULL, NULL, &err) == HL_OK, "%s", err.msg);
-    return t;
-}
-
 /* Henon-Heiles and Kepler at order 20 (tol 1e-15 in the flow), 2, 4 and
  * 8 lanes, and 1 lane: the single recursion's degenerate batch */
 static void test_systems(void)
@@ -135,7 +125,7 @@ static void test_systems(void)
             zk[4 * l + i] = (i < 2 ? 0.4 : 0.2) + 0.13 * ((l * (i + 1)) % 5) * (i % 2 ? -1 : 1);
         }
     for (int s = 0; s < 2; s++) {
-        hl_tape *t = hamiltonian(H[s], 2);
+        hl_tape *t = test_hamiltonian(P, H[s], 2);
         if (t == NULL)
             continue;
         const double *z = s == 0 ? z0 : zk;

@@ -1,7 +1,7 @@
-/* The flow tests' systems: the tape of H in (x, px) or (x, y, px, py), on
- * the test's pool; a formula that does not parse fails the test. */
-#ifndef HAMLIE_FLOW_TEST_HAMILTONIAN_H
-#define HAMLIE_FLOW_TEST_HAMILTONIAN_H
+/* The tape and flow tests' systems: the tape of H in (x, px) or (x, y, px,
+ * py), on the test's pool; a formula that does not parse fails the test. */
+#ifndef HAMLIE_TAPE_TEST_HAMILTONIAN_H
+#define HAMLIE_TAPE_TEST_HAMILTONIAN_H
 
 #include "hl_test.h"
 #include "hamlie/tape.h"
