@@ -138,6 +138,56 @@ def report(title, rows, coef, knee):
     return m
 
 
+# ---- the orders the rule (src/flow/rule.c) would choose with a model ----
+# A copy of rule.c's arithmetic, for the report only: Jorba & Zou's order and
+# step, the raised orders' step (a tenth of the tail), the ratio's bound.
+MAX_LN_RATIO, RAISED_MARGIN = -1.5, math.log(10)
+
+
+def p_jz(ln_tol):
+    return math.ceil(-ln_tol / 2) + 1
+
+
+def ln_tail(p, ln_r):
+    return (p + 1) * ln_r - math.log1p(-math.exp(ln_r))
+
+
+def ratio_for_tail(p, target):
+    ln_r = target / (p + 1)
+    for _ in range(8):
+        ln_r = (target + math.log1p(-math.exp(ln_r))) / (p + 1)
+    return ln_r
+
+
+def chosen_order(ln_tol, ns):
+    """ns(p): a step's cost; the order rule.c chooses (tol 1e-13 .. 1.5e-8)."""
+    p0 = p_jz(ln_tol)
+    tail = ln_tail(p0, -2 - 0.7 / (p0 - 1)) - RAISED_MARGIN
+    best, order = ns(p0) * math.exp(-ratio_for_tail(p0, tail)), p0
+    for p in range(p0 + 1, 200):
+        ln_r = ratio_for_tail(p, tail)
+        if ln_r > MAX_LN_RATIO:
+            break
+        if ns(p) * math.exp(-ln_r) < best:
+            best, order = ns(p) * math.exp(-ln_r), p
+    return order
+
+
+def orders_table(rows, models):
+    tols = (1e-9, 1e-10, 1e-11, 1e-12, 1e-13)
+    print("\n## Orders the rule would choose, tol %s\n" % " ".join("%g" % t for t in tols))
+    print("| tape | " + " | ".join(name for name, _, _ in models) + " |")
+    print("|---|" + "---|" * len(models))
+    for s in dict.fromkeys(r["system"] for r in rows):
+        r = next(x for x in rows if x["system"] == s)
+        cells = []
+        for _, coef, knee in models:
+            def ns(p, coef=coef, knee=knee):
+                return float(np.dot(features(dict(r, order=p), knee), coef))
+            cells.append(" ".join(str(chosen_order(math.log(t), ns)) for t in tols))
+        print("| %s | %s |" % (s, " | ".join(cells)))
+
+
 def read_raw(path):
     rows = []
     for line in open(path):
@@ -204,9 +254,12 @@ def main():
         def score(k):
             return statistics.median(abs(x) for x in misfit(rows, fit(rows, k), k))
         a.knee = min(range(500, 6001, 100), key=score)
+    models = [("cost.c now", cur, cur_knee), ("refit", fit(rows, None), None)]
     if a.knee is not None:
-        m1 = report("refit with a knee at products p^2 = %g" % a.knee, rows, fit(rows, a.knee),
+        models.append(("refit, knee", fit(rows, a.knee), a.knee))
+        m1 = report("refit with a knee at products p^2 = %g" % a.knee, rows, models[-1][1],
                     a.knee)
+    orders_table(rows, models)
     # the ratios are what the choice of the order reads: the misfit's spread
     # within a system, not its level, moves the choice
     print("\nmisfit spread within a system (max - min), now / refit:")
