@@ -16,6 +16,8 @@
  * Arguments, key=value, any order:
  *   reps=3  T=1e4,1e5  tols=1e-9,...,1e-16  sys=-1 (or 0..3)  digits=20,30
  *   ref=0 (digits of the Arb reference; 0: none)  methods=interp,native,rk8pd,arb
+ *   (and terms: a row "terms,system,products,linear,calls,state" of the
+ *   tape's cost terms, tape/cost_impl.h; sys=4..9: the zoo's tapes)
  *   order=0 (the Taylor order of hamlie in double; 0: its rule's.  With
  *   another, the step of hl_flow_rule_at: what a step costs against the
  *   order, for the cost model of src/tape/cost.c)
@@ -30,10 +32,12 @@
 #include <time.h>
 
 #include "flow/flow_impl.h" /* hl_flow_new_order */
+#include "tape/cost_impl.h" /* hl_tape_taylor_cost_terms */
 #include "hamlie/expr.h"
 #include "hamlie/flow.h"
 
 #define MAXLIST 32
+#define MAXN 6 /* state components, at most */
 
 /* The few GSL declarations used, restated so that the bench builds without
  * GSL's headers (gsl_odeiv2.h; GSL_SUCCESS = 0). */
@@ -61,7 +65,7 @@ static double now(void)
 typedef struct system {
     const char *name, *H;
     int n;
-    double z0[4];
+    double z0[MAXN];
     int (*rhs)(double t, const double *z, double *f, void *arg);
 } system_t;
 
@@ -100,7 +104,12 @@ static int kep_f(double t, const double *z, double *f, void *arg)
     return 0;
 }
 
-static const system_t systems[4] = {
+/* The four systems of the work-precision figure (sys=0..3, sys=-1: all
+ * four), then tapes of the zoo (tests/zoo/zoo.py) with other mixes of
+ * products, calls and state, for the cost of a step against the order
+ * (bench/cost_fit.py; sys=4.., no exact solution, no rk8pd). */
+#define NSYS_EXACT 4
+static const system_t systems[] = {
     {"oscillator", "(q^2 + p^2)/2", 2, {1, 0}, osc_f},
     {"pendulum", "p^2/2 - cos(q)", 2, {1.3, 0}, pen_f},
     {"henon-heiles",
@@ -109,7 +118,27 @@ static const system_t systems[4] = {
      {0.1, -0.1, 0.05, 0.1},
      hh_f},
     {"kepler", "(px^2 + py^2)/2 - 1/sqrt(x^2 + y^2)", 4, {0.5, 0, 0, 1.7320508075688772}, kep_f},
+    {"quartic", "p^2/2 + q^4/4", 2, {1, 0}, NULL},
+    {"morse", "p^2/2 + (1 - exp(-q))^2", 2, {-0.5, 0}, NULL},
+    {"double-pendulum",
+     "(px^2 + 2*py^2 - 2*px*py*cos(x-y))/(2*(1+sin(x-y)^2)) - 2*cos(x) - cos(y)",
+     4,
+     {0.5, -0.5, 0, 0},
+     NULL},
+    {"toda-3",
+     "(px^2+py^2+pz^2)/2 + exp(x-y) + exp(y-z) + exp(z-x) - 3",
+     6,
+     {0.5, 0, -0.5, 0.1, -0.2, 0.1},
+     NULL},
+    {"kepler-3d", "(px^2+py^2+pz^2)/2 - 1/sqrt(x^2+y^2+z^2)", 6, {1, 0, 0, 0, 0.8, 0.4}, NULL},
+    {"fpu-beta-3",
+     "(px^2+py^2+pz^2)/2 + (x^2 + (y-x)^2 + (z-y)^2 + z^2)/2"
+     " + (x^4 + (y-x)^4 + (z-y)^4 + z^4)/4",
+     6,
+     {0.3, 0, -0.3, 0, 0.2, 0},
+     NULL},
 };
+#define NSYS ((int)(sizeof systems / sizeof systems[0]))
 
 /* NOTE: every method, the Arb runs too, starts from the doubles nearest the
  * initial values (1.3, 0.1, sqrt 3 are not doubles), and
@@ -119,13 +148,14 @@ static const system_t systems[4] = {
 
 static hl_tape *tape_from_H(hl_pool *P, const system_t *S)
 {
-    const char *q1[] = {"q"}, *p1[] = {"p"}, *q2[] = {"x", "y"}, *p2[] = {"px", "py"};
+    /* q, p with one degree of freedom; x, y (z), px, py (pz) with more */
+    const char *q1[] = {"q"}, *p1[] = {"p"}, *qs[] = {"x", "y", "z"}, *ps[] = {"px", "py", "pz"};
     const hl_expr *H;
     hl_tape *t = NULL;
     hl_error err;
-    int two = S->n == 4;
+    int dof = S->n / 2;
     if (hl_parse(&H, P, S->H, &err) != HL_OK ||
-        hl_tape_hamiltonian(&t, P, H, two ? 2 : 1, two ? q2 : q1, two ? p2 : p1, 0, NULL, NULL,
+        hl_tape_hamiltonian(&t, P, H, dof, dof > 1 ? qs : q1, dof > 1 ? ps : p1, 0, NULL, NULL,
                             &err) != HL_OK) {
         fprintf(stderr, "work_precision: %s\n", err.msg);
         exit(1);
@@ -188,7 +218,7 @@ static double flow_best(hl_tape *tape, const system_t *S, double T, double tol, 
 static void run_hamlie(hl_pool *P, const system_t *S, double T, double tol, int reps, int interp,
                        int native)
 {
-    double z[4];
+    double z[MAXN];
     long steps = 0;
     int order = 0;
     if (interp) {
@@ -221,6 +251,17 @@ static void run_hamlie(hl_pool *P, const system_t *S, double T, double tol, int 
             row_double("hamlie-native", S, T, tol, order, steps, ms, compile_ms, z);
         hl_tape_free(tape);
     }
+}
+
+/* The tape's terms of the cost of a Taylor step (tape/cost_impl.h):
+ *   terms,system,products,linear,calls,state */
+static void row_terms(hl_pool *P, const system_t *S)
+{
+    hl_tape *tape = tape_from_H(P, S);
+    hl_taylor_cost_terms c;
+    hl_tape_taylor_cost_terms(tape, &c);
+    printf("terms,%s,%g,%g,%g,%g\n", S->name, c.products, c.linear, c.calls, c.state);
+    hl_tape_free(tape);
 }
 
 /* ---- hamlie in Arb ------------------------------------------------------- */
@@ -293,7 +334,7 @@ static int load_gsl(void)
 static void run_rk8pd(const system_t *S, double T, double tol, int reps)
 {
     gsl_odeiv2_system gs = {S->rhs, NULL, (size_t)S->n, NULL};
-    double best = INFINITY, z[4];
+    double best = INFINITY, z[MAXN];
     for (int r = 0; r < reps; r++) {
         gsl_odeiv2_driver *d = p_alloc(&gs, *p_rk8pd, 1e-3, tol, tol);
         memcpy(z, S->z0, sizeof z);
@@ -379,17 +420,19 @@ int main(int argc, char **argv)
     if (wants(&o, "rk8pd") && !have_gsl)
         fprintf(stderr, "work_precision: libgsl not found, rk8pd skipped\n");
     hl_pool *P = hl_pool_new();
-    for (int s = 0; s < 4; s++) {
-        if (o.sys >= 0 && s != o.sys)
+    for (int s = 0; s < NSYS; s++) {
+        if (o.sys >= 0 ? s != o.sys : s >= NSYS_EXACT)
             continue;
         const system_t *S = &systems[s];
+        if (wants(&o, "terms"))
+            row_terms(P, S);
         for (int iT = 0; iT < o.nT; iT++) {
             if (o.ref > 0)
                 run_arb(P, S, o.T[iT], o.ref, "ref");
             for (int i = 0; i < o.ntol; i++) {
                 run_hamlie(P, S, o.T[iT], o.tol[i], o.reps, wants(&o, "interp"),
                            wants(&o, "native"));
-                if (have_gsl)
+                if (have_gsl && S->rhs != NULL)
                     run_rk8pd(S, o.T[iT], o.tol[i], o.reps);
             }
             for (int i = 0; wants(&o, "arb") && i < o.ndig; i++)

@@ -238,6 +238,11 @@ int hl_tape_batch_pays(const hl_tape *tape, int order, int lanes, long member_st
  * and the driver's sums over the coefficients as p, the step rule not).
  * The flow chooses its order by it; it counts instructions, never clocks. */
 void hl_tape_taylor_step_cost(const hl_tape *tape, double c[3]);
+/* The same model's ns a step at this order, with its knee: past a size of
+ * the compiled recursion (its products times p^2) a product costs more,
+ * as the code outgrows the core's cache of decoded instructions.  The
+ * quadratic above is the cost below the knee. */
+double hl_tape_taylor_step_ns(const hl_tape *tape, int order);
 /* ---- the disk cache of compiled code (`hamlie cache`) ----
  * Compiled code is kept in $HAMLIE_CACHE_DIR, else $XDG_CACHE_HOME/hamlie,
  * else ~/.cache/hamlie (HAMLIE_CACHE=off: not at all).  hamlie's files

@@ -4,9 +4,10 @@
  * Jorba & Zou's order p = ceil(-ln tol / 2) + 1 (heyoka's) is the cheapest
  * per unit time if a step costs as the square of its order (the products'
  * convolutions).  A step really costs c0 + c1 p + c2 p^2 (the step rule
- * and the loop, the linear instructions and the driver's sums over the
- * coefficients, the products: hl_tape_taylor_step_cost), so where c0 and
- * c1 matter (small systems) a higher order with a longer step is cheaper.
+ * and the loop, the driver's sums over the coefficients, the products),
+ * more past a knee in the compiled code's size (hl_tape_taylor_step_ns),
+ * so where c0 and c1 matter (small systems) a higher order with a longer
+ * step is cheaper, up to the knee.
  * The step at the higher order leaves the same tail past the order as
  * Jorba & Zou's step at theirs: the same estimated error per step, in fewer
  * steps (docs/tolerance.md). */
@@ -51,9 +52,24 @@ void hl_flow_rule_at(hl_flow_rule *rule, double ln_tol, int p)
 
 /* A step's cost per unit time, in units of the radius of convergence:
  * the cost of a step at the rule's order over its fraction of the radius. */
-static double cost_per_time(const double c[3], const hl_flow_rule *rule)
+static double cost_per_time(const hl_tape *f, const hl_flow_rule *rule)
 {
-    return (c[0] + c[1] * rule->p + c[2] * rule->p * rule->p) * exp(-rule->ln_ratio);
+    return hl_tape_taylor_step_ns(f, rule->p) * exp(-rule->ln_ratio);
+}
+
+/* What Jorba & Zou's order would cost per unit time with the raised
+ * orders' tail (a tenth of theirs, HL_FLOW_RAISED_MARGIN): the orders are
+ * compared at the same estimated error, not the raised ones at a tenth of
+ * Jorba & Zou's.  NOTE: compared at their own tail, Jorba & Zou's order won
+ * by the margin's 10^(1/(p+1)) where a raised one was as cheap, and the
+ * error jumped up as the tolerance fell (Kepler, t = 1e3: 2.6e-11 at tol
+ * 1e-11, order 18; 1.3e-10 at 1e-13, order 16; flow/t-tol).  If none is
+ * cheaper, the steps stay theirs (heyoka's). */
+static double cost_at_raised_tail(const hl_tape *f, const hl_flow_rule *jz)
+{
+    hl_flow_rule at = *jz;
+    at.ln_ratio = ratio_for_tail(jz->p, ln_tail(jz->p, jz->ln_ratio) - HL_FLOW_RAISED_MARGIN);
+    return cost_per_time(f, &at);
 }
 
 /* NOTE: where Jorba & Zou's tail is below double's rounding (tol under
@@ -69,17 +85,15 @@ void hl_flow_rule_for(hl_flow_rule *rule, double ln_tol, const hl_tape *f)
     hl_flow_rule_jz(rule, ln_tol);
     if (rule->p < HL_FLOW_CHECK_BELOW)
         return; /* below, every step is checked: the orders stay Jorba & Zou's */
-    double c[3];
-    hl_tape_taylor_step_cost(f, c);
     if (ln_tail(rule->p, rule->ln_ratio) < log(DBL_EPSILON))
         return;
-    double best = cost_per_time(c, rule);
+    double best = cost_at_raised_tail(f, rule);
     for (int p = rule->p + 1; p <= HL_FLOW_MAX_ORDER; p++) {
         hl_flow_rule at;
         hl_flow_rule_at(&at, ln_tol, p);
         if (at.ln_ratio > HL_FLOW_MAX_LN_RATIO)
             break;
-        double cost = cost_per_time(c, &at);
+        double cost = cost_per_time(f, &at);
         if (cost < best) {
             best = cost;
             *rule = at;

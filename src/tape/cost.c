@@ -15,7 +15,9 @@
  * so that a run makes the same choices on every machine and is
  * reproducible. */
 #include <limits.h>
+#include <math.h>
 
+#include "tape/cost_impl.h"
 #include "tape/jit_cache_impl.h"
 #include "tape/tape_impl.h"
 
@@ -242,27 +244,45 @@ int hl_tape_batch_pays(const hl_tape *t, int order, int lanes, long member_steps
 }
 
 /* ---- the cost of a Taylor step against its order ----------------------
- * The adaptive integrator (flow.h) chooses its order by what a step costs,
- * c0 + c1 p + c2 p^2 (hl_tape_taylor_step_cost), against how far it goes.
- * The figures are a least-squares fit of 93 runs of the four systems of
- * bench/work_precision.c (order=P from 12 to 40, tol 1e-9 .. 1e-16,
- * t = 1e4 and 1e5, native; ns a step: oscillator 150 at p = 19 .. 260 at 32,
- * Kepler 530 at 19 .. 1970 at 40), median misfit 4 %, on a loaded
- * 2-core machine: only their ratios matter to the choice.  The linear
- * instructions' share could not be told from the state's (the four tapes
- * have 1 to 6); it is put at a tenth of it. */
+ * The adaptive integrator (flow.h) chooses its order by what a step costs
+ * (hl_tape_taylor_step_ns) against how far it goes.  The figures are a
+ * least-squares fit of the relative misfit (bench/cost_fit.py: ns a step,
+ * native, orders 12 to 40, the four systems of bench/work_precision.c and
+ * six tapes of the zoo with other mixes of products, libm calls and
+ * state; 120 points, the median of two rounds), on a 2-core machine
+ * under load: only their ratios matter to the choice.  Median misfit 5 %
+ * (without the knee 15 %; the model before session 12, c0 = 40, 4.3 per
+ * state and order, 0.18 per product and p^2: 68 %, its c0 and c1 too small
+ * against c2 since sessions 10-11 made the driver cheaper and the
+ * recursion's code denser).  The linear instructions' share came out 0
+ * against the state's (compiled, a sum is folded into the multiply-adds
+ * around it); the term is kept, at 0, so that a refit can give it one. */
 
 /* Per product (a convolution) and p^2: the sum over orders 0..p of k
  * multiply-adds */
-#define TAYLOR_NS_PER_PRODUCT_P2 0.18
+#define TAYLOR_NS_PER_PRODUCT_P2 0.10
+/* NOTE: the knee.  The compiled recursion is one straight-line function
+ * whose length grows as its products times p^2; past about
+ * TAYLOR_KNEE_PRODUCTS_P2 (some 2500-3500 instructions, session 11's
+ * counts scaled by p^2: Kepler between orders 18 and 22, Henon-Heiles
+ * between 28 and 32, the 3-D Kepler and FPU tapes between 18 and 20) each
+ * further product p^2 costs 2.5 times as much, as the code no longer fits
+ * the core's cache of decoded instructions (AMD Zen 5 here; a core with a
+ * smaller one has its knee earlier).  The interpreter has no knee.  It
+ * moved Kepler's orders at tol 1e-11, 1e-12 from 21, 22 to 18
+ * (docs/work-precision.md, session 12). */
+#define TAYLOR_KNEE_PRODUCTS_P2 1500.0
+#define TAYLOR_NS_PER_PRODUCT_P2_PAST_KNEE 0.145
 /* Per linear instruction (a sum, a constant factor) and order */
-#define TAYLOR_NS_PER_LINEAR_P 0.4
+#define TAYLOR_NS_PER_LINEAR_P 0.0
 /* Per state component and order: the driver's Horner sum of the step,
- * the coefficient norms, the copies of the coefficients */
-#define TAYLOR_NS_PER_STATE_P 4.3
+ * the coefficient norms */
+#define TAYLOR_NS_PER_STATE_P 0.9
+/* Per libm call at order 0 (sin and cos, exp, log, pow, ...) */
+#define TAYLOR_NS_PER_CALL 17.0
 /* Per step: the step rule (logs and exps), the call of the recursion, the
  * loop's tests and the time's two-sum */
-#define TAYLOR_NS_PER_STEP 40.0
+#define TAYLOR_NS_PER_STEP 94.0
 
 /* The products an instruction's recursion costs (in convolutions). */
 static double products_of(int op)
@@ -296,15 +316,55 @@ static double products_of(int op)
     }
 }
 
-void hl_tape_taylor_step_cost(const hl_tape *t, double c[3])
+/* 1 if the instruction's order 0 is a call of libm (its coefficients past
+ * 0 are products); sqrt and a^(3/2) are instructions. */
+static int calls_libm(int op)
 {
-    double products = 0, linear = 0;
+    switch (op) {
+    case HL_OP_POWK:
+    case HL_OP_EXP:
+    case HL_OP_LOG:
+    case HL_OP_SINCOS:
+    case HL_OP_SINHCOSH:
+    case HL_OP_TAN:
+    case HL_OP_TANH:
+    case HL_OP_ATAN:
+    case HL_OP_ASIN:
+    case HL_OP_ACOS:
+    case HL_OP_ASINH:
+    case HL_OP_ATAN2:
+        return 1;
+    default:
+        return 0;
+    }
+}
+
+void hl_tape_taylor_cost_terms(const hl_tape *t, hl_taylor_cost_terms *terms)
+{
+    *terms = (hl_taylor_cost_terms){.state = t->nin};
     for (int i = 0; i < t->ncode; i++) {
         double w = products_of(t->code[i].op);
-        products += w;
-        linear += w == 0;
+        terms->products += w;
+        terms->linear += w == 0;
+        terms->calls += calls_libm(t->code[i].op);
     }
-    c[0] = TAYLOR_NS_PER_STEP;
-    c[1] = TAYLOR_NS_PER_LINEAR_P * linear + TAYLOR_NS_PER_STATE_P * t->nin;
-    c[2] = TAYLOR_NS_PER_PRODUCT_P2 * products;
+}
+
+void hl_tape_taylor_step_cost(const hl_tape *t, double c[3])
+{
+    hl_taylor_cost_terms n;
+    hl_tape_taylor_cost_terms(t, &n);
+    c[0] = TAYLOR_NS_PER_STEP + TAYLOR_NS_PER_CALL * n.calls;
+    c[1] = TAYLOR_NS_PER_LINEAR_P * n.linear + TAYLOR_NS_PER_STATE_P * n.state;
+    c[2] = TAYLOR_NS_PER_PRODUCT_P2 * n.products;
+}
+
+double hl_tape_taylor_step_ns(const hl_tape *t, int order)
+{
+    hl_taylor_cost_terms n;
+    hl_tape_taylor_cost_terms(t, &n);
+    double c[3], p = order;
+    hl_tape_taylor_step_cost(t, c);
+    double past = n.products * p * p - TAYLOR_KNEE_PRODUCTS_P2;
+    return c[0] + c[1] * p + c[2] * p * p + TAYLOR_NS_PER_PRODUCT_P2_PAST_KNEE * fmax(past, 0);
 }
