@@ -31,6 +31,7 @@
 #include <float.h>
 #include <math.h>
 
+#include "flow/lnexp.h"
 #include "hamlie/error.h"
 #include "hamlie/flow.h"
 #include "hamlie/tape.h"
@@ -132,13 +133,25 @@ hl_status hl_flow_new_order(hl_flow **out, hl_tape *f, double atol, double rtol,
  * with the step at that order whose tail is Jorba & Zou's (rule.c). */
 void hl_flow_rule_for(hl_flow_rule *rule, double ln_tol, const hl_tape *f);
 
-/* ln(s / N) for s, N > 0: one log of the quotient, or where that is out
- * of double's normal range the difference of two */
+/* ln(s / N) for s, N > 0: one log of the quotient (lnexp.h's), or where
+ * that is out of double's normal range the difference of two of libm's */
 static inline double hl_flow_ln_quot(double s, double N)
 {
     double x = s / N;
-    return x >= DBL_MIN && x <= DBL_MAX ? log(x) : log(s) - log(N);
+    return x >= DBL_MIN && x <= DBL_MAX ? hl_flow_ln_normal(x) : log(s) - log(N);
 }
+
+/* The step's ln and exp are lnexp.h's, not libm's, and the step is taken
+ * e^-HL_FLOW_LNEXP_DELTA shorter, which covers their errors and the
+ * roundings of the formula: the step is never longer than the rule's exact
+ * value.  ln h = min_k L_k / k + ln_ratio, L_k = ln(s / N_k); the errors
+ * in ln h: the quotient s / N_k 1.1e-16, lnexp's ln 2e-16 + 2.5e-16 |L_k|
+ * (libm's two logs where the quotient is not normal: 1.1e-16 |L_k|), the
+ * division by k 1.1e-16 |L_k| / k, ln_ratio - delta 2.2e-16, the sum
+ * 1.1e-16 |ln h|, the exp 4e-16.  With |L_k| <= 1455 (s and N_k doubles)
+ * and |ln h| <= 708 (beyond, libm's exp: the step is 0 or huge, and
+ * clipped) they add to at most 6.5e-13. */
+#define HL_FLOW_LNEXP_DELTA 1e-12
 
 /* hl_flow_step_for's body for a window of nw orders, inlined twice: with
  * nw the constant HL_FLOW_WINDOW (every order from 6 on) its loops unroll,
@@ -168,7 +181,7 @@ static inline __attribute__((always_inline)) double hl_flow_step_window(int *che
     const double Np = win[nw - 1], Nq = win[nw - 2];
     double lp = Np > 0 ? hl_flow_ln_quot(s, Np) / p : INFINITY;
     double lq = Nq > 0 ? hl_flow_ln_quot(s, Nq) / (p - 1) : INFINITY;
-    double h = exp((lq < lp ? lq : lp) + rule->ln_ratio);
+    double h = hl_flow_exp((lq < lp ? lq : lp) + (rule->ln_ratio - HL_FLOW_LNEXP_DELTA));
     /* the orders below: N_k h^k <= eps e^(3.5 (p-1-k)).  First all at once,
      * without logs or branches (most steps end here)... */
     double worst = 0, pw = hl_flow_powi(h, lo);
