@@ -179,8 +179,8 @@ static inline __attribute__((always_inline)) double hl_flow_step_window(int *che
      * its bound (a third of Kepler's steps; one log fewer on average) made
      * that chain longer, the pendulum's steps 4 % slower. */
     const double Np = win[nw - 1], Nq = win[nw - 2];
-    double lp = Np > 0 ? hl_flow_ln_quot(s, Np) / p : INFINITY;
-    double lq = Nq > 0 ? hl_flow_ln_quot(s, Nq) / (p - 1) : INFINITY;
+    double lp = Np > 0 ? hl_flow_ln_quot(s, Np) * (1.0 / p) : INFINITY;
+    double lq = Nq > 0 ? hl_flow_ln_quot(s, Nq) * (1.0 / (p - 1)) : INFINITY;
     double h = hl_flow_exp((lq < lp ? lq : lp) + (rule->ln_ratio - HL_FLOW_LNEXP_DELTA));
     /* the orders below: N_k h^k <= eps e^(3.5 (p-1-k)).  First all at once,
      * without logs or branches (most steps end here)... */
