@@ -133,12 +133,6 @@ hl_status hl_flow_new_order(hl_flow **out, hl_tape *f, double atol, double rtol,
  * with the step at that order whose tail is Jorba & Zou's (rule.c). */
 void hl_flow_rule_for(hl_flow_rule *rule, double ln_tol, const hl_tape *f);
 
-/* ln N for finite N > 0: lnexp.h's, libm's for a subnormal N */
-static inline double hl_flow_ln_pos(double N)
-{
-    return N >= DBL_MIN ? hl_flow_ln_normal(N) : log(N);
-}
-
 /* The step's ln and exp are lnexp.h's, not libm's, and the step is taken
  * e^-HL_FLOW_LNEXP_DELTA shorter, which covers their errors and the
  * roundings of the formula: the step is never longer than the rule's exact
@@ -181,9 +175,9 @@ static inline __attribute__((always_inline)) double hl_flow_step_window(int *che
      * instructions, but 2-4 % faster steps on the pendulum and Henon-Heiles,
      * the same on Kepler); lnexp.h's ln and exp (HL_FLOW_LNEXP_DELTA). */
     const double Np = win[nw - 1], Nq = win[nw - 2];
-    const double ln_s = hl_flow_ln_normal(s);
-    double lp = Np > 0 ? (ln_s - hl_flow_ln_pos(Np)) * (1.0 / p) : INFINITY;
-    double lq = Nq > 0 ? (ln_s - hl_flow_ln_pos(Nq)) * (1.0 / (p - 1)) : INFINITY;
+    const double ln_s = hl_flow_ln(s); /* libm's where s is not normal: s = inf */
+    double lp = Np > 0 ? (ln_s - hl_flow_ln(Np)) * (1.0 / p) : INFINITY;
+    double lq = Nq > 0 ? (ln_s - hl_flow_ln(Nq)) * (1.0 / (p - 1)) : INFINITY;
     double h = hl_flow_exp((lq < lp ? lq : lp) + (rule->ln_ratio - HL_FLOW_LNEXP_DELTA));
     /* the orders below: N_k h^k <= eps e^(3.5 (p-1-k)).  First all at once,
      * without logs or branches (most steps end here)... */

@@ -19,6 +19,7 @@
  * and expl over the whole range, and against mpmath at a few points):
  *   hl_flow_ln_normal:  |ln~ x - ln x| <= 2e-16 + 2.5e-16 |ln x|, for
  *                       normal positive x (so <= 1.8e-13 over the range);
+ *                       (hl_flow_ln: libm's log for other x);
  *   hl_flow_exp:        |exp~ y / e^y - 1| <= 4e-16 for |y| <= 708, libm's
  *                       exp outside (inf, NaN, overflow, subnormal). */
 #ifndef HAMLIE_FLOW_LNEXP_H
@@ -71,6 +72,15 @@ static inline double hl_flow_ln_normal(double x)
     /* -r^2/2 + r^3/3 - ... - r^6/6, in pairs: a shorter chain than Horner */
     double tail = r2 * ((-0.5 + r * (1.0 / 3)) + r2 * ((-0.25 + r * 0.2) + r2 * (-1.0 / 6)));
     return hi + (r + (k * ln2_lo + tail));
+}
+
+/* ln x: hl_flow_ln_normal for normal positive x, libm's log for the rest
+ * (0, subnormal, inf, NaN, negative: as libm).  One unsigned comparison of
+ * the bits: below DBL_MIN they wrap around. */
+static inline double hl_flow_ln(double x)
+{
+    const uint64_t min = 0x0010000000000000, span = 0x7ff0000000000000 - min; /* DBL_MIN, inf */
+    return hl_flow_bits_of(x) - min < span ? hl_flow_ln_normal(x) : log(x);
 }
 
 /* e^y: y = (n + j/64) ln 2 + r, n, j integers, 0 <= j < 64, |r| <= ln(2)/128

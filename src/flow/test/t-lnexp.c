@@ -191,11 +191,27 @@ static void test_exp_outside(void)
     CHECK(hl_flow_exp(INFINITY) == INFINITY && hl_flow_exp(-INFINITY) == 0);
 }
 
+/* hl_flow_ln: lnexp's for normal positive x, libm's log bit for bit else */
+static void test_ln_outside(void)
+{
+    const double xs[] = {0,        -0.0, 4.9e-324, 1e-310, DBL_MIN * (1 - DBL_EPSILON),
+                         INFINITY, -1,   -INFINITY};
+    for (size_t i = 0; i < sizeof xs / sizeof *xs; i++)
+        CHECK_MSG(hl_flow_bits_of(hl_flow_ln(xs[i])) == hl_flow_bits_of(log(xs[i])),
+                  "ln(%g) = %a, libm %a", xs[i], hl_flow_ln(xs[i]), log(xs[i]));
+    CHECK(isnan(hl_flow_ln(NAN)));
+    const double normal[] = {DBL_MIN, 0.5, 1, 3, DBL_MAX};
+    for (size_t i = 0; i < sizeof normal / sizeof *normal; i++)
+        CHECK(hl_flow_bits_of(hl_flow_ln(normal[i])) ==
+              hl_flow_bits_of(hl_flow_ln_normal(normal[i])));
+}
+
 int main(void)
 {
     test_ln_range();
     test_exp_range();
     test_mpmath();
     test_exp_outside();
+    test_ln_outside();
     return HL_TEST_END();
 }
