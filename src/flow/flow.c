@@ -333,17 +333,24 @@ static void own_coefficients(hl_flow *fl)
     fl->cur = fl->coef;
 }
 
+/* Whether the step of length h from thi + tlo has work for step_outputs: an
+ * event to look for, or the next output time ts[j] inside the step. */
+static inline int step_has_outputs(const hl_flow *fl, int j, double thi, double tlo, double h,
+                                   double dir, const double *ts, int nts)
+{
+    return fl->ev != NULL || (j < nts && dir * ((ts[j] - thi) - tlo) <= h);
+}
+
 /* What falls inside the current step of length h from (thi + tlo, z): the
  * output times ts[*j..] and the crossings of the event, in the order of
  * time (an output at a crossing's time first).  A non-zero return of a
  * callback is returned; if it was the event's, z and the time are left at
- * the crossing. */
+ * the crossing.  Called only where step_has_outputs. */
 static int step_outputs(hl_flow *fl, int *j, double *thi, double *tlo, double *z, double h,
                         double dir, const double *ts, int nts, hl_flow_fn fn, void *arg)
 {
     on_step o = {fl, dir};
-    if (fl->ev != NULL || (*j < nts && dir * ((ts[*j] - *thi) - *tlo) <= h))
-        own_coefficients(fl); /* before the event's tape or a callback runs */
+    own_coefficients(fl); /* before the event's tape or a callback runs */
     double ta = 0, ga = fl->ev != NULL ? hl_event_value(fl->ev, z) : 0, tc = h;
     for (;;) {
         int hit = fl->ev != NULL && hl_event_first_taylor(fl->ev, fl->cur, fl->p, dir, h,
@@ -393,8 +400,7 @@ static int drive(hl_flow *fl, double *thi, double *tlo, double *z, double tend, 
             return st;
         first = 0;
         int last = h == rem;
-        /* (the call only where there is something to do: as step_outputs) */
-        if ((fl->ev != NULL || (j < nts && dir * ((ts[j] - *thi) - *tlo) <= h)) &&
+        if (step_has_outputs(fl, j, *thi, *tlo, h, dir, ts, nts) &&
             (st = step_outputs(fl, &j, thi, tlo, z, h, dir, ts, nts, fn, arg)) != 0)
             return st;
         /* in place: the state before the step is the coefficients' order 0 */
