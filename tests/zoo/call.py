@@ -8,7 +8,9 @@ import resource
 import shlex
 import signal
 import subprocess
+import threading
 import time
+from contextlib import contextmanager
 
 SANITIZER_MARKS = ("ERROR: AddressSanitizer", "ERROR: LeakSanitizer",
                    "runtime error:", "SUMMARY: UndefinedBehaviorSanitizer")
@@ -64,6 +66,45 @@ def last_line(text):
     return (said or lines or [""])[0 if said else -1][:200]
 
 
+class OneAtATime:
+    """The zoo's threads overlap hamlie's processes, never their own Python.
+    mpmath's working precision (mp.prec) is one global, and SymPy sets it to
+    2 bits for a moment whenever it asks the sign of a function
+    (Expr._eval_is_extended_positive_negative calls _eval_evalf(2), under
+    mpmath.workprec); a conversion to mpf in another thread in that moment
+    keeps 2 bits (CI once read v_3 = 5.77242 as 6). So a worker holds this
+    lock whenever it runs, and lets go only while it waits for hamlie."""
+
+    def __init__(self):
+        self._lock = threading.Lock()
+        self._mine = threading.local()
+
+    @contextmanager
+    def held(self):
+        with self._lock:
+            self._mine.held = True
+            try:
+                yield
+            finally:
+                self._mine.held = False
+
+    @contextmanager
+    def released(self):
+        if not getattr(self._mine, "held", False):
+            yield
+            return
+        self._mine.held = False
+        self._lock.release()
+        try:
+            yield
+        finally:
+            self._lock.acquire()
+            self._mine.held = True
+
+
+PYTHON = OneAtATime()
+
+
 class Hamlie:
     """The binary, the budget of a call, and a count of the calls. The
     budget is CPU seconds (RLIMIT_CPU), so that a loaded machine does not
@@ -81,6 +122,11 @@ class Hamlie:
         limit = self.cpu_seconds * self.WALL_FACTOR
         budget = int(math.ceil(self.cpu_seconds))
         self.calls += 1
+        with PYTHON.released():
+            return self._run(argv, limit, budget)
+
+    @staticmethod
+    def _run(argv, limit, budget):
         start = time.monotonic()
         # NOTE: prlimit after the start, not preexec_fn (unsafe with threads);
         # the child has used next to no CPU by then

@@ -27,7 +27,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import checks  # noqa: E402
 import known  # noqa: E402
 import randomh  # noqa: E402
-from call import Hamlie, non_finite_paths  # noqa: E402
+from call import PYTHON, Hamlie, non_finite_paths  # noqa: E402
 from zoo import ZOO, points  # noqa: E402
 
 
@@ -234,17 +234,24 @@ def main():
     zoo = [s for s in ZOO[::opts.stride] if re.search(opts.only, s["name"])]
     random_done = [0]
 
-    def zoo_task(item):
-        system_cases(ctx, *item, catalog)
+    def one_at_a_time(task, *args):
+        with PYTHON.held():
+            task(*args)
+
+    def zoo_task(i, s):
+        system_cases(ctx, i, s, catalog)
+
+    def random_task():
+        random_done[0] = run_random(ctx, opts.random, opts.seed)
 
     # the random Hamiltonians run beside the zoo (one more worker), so that
     # a time budget (--minutes) is shared between them
     with ThreadPoolExecutor(max_workers=opts.jobs + 1) as pool:
-        futures = [pool.submit(
-            lambda: random_done.__setitem__(0, run_random(ctx, opts.random, opts.seed)))]
-        futures.append(pool.submit(checks.check_regressions, ctx))
+        futures = [pool.submit(one_at_a_time, random_task),
+                   pool.submit(one_at_a_time, checks.check_regressions, ctx)]
         if not opts.no_zoo:
-            futures += [pool.submit(zoo_task, (i, s)) for i, s in enumerate(zoo)]
+            futures += [pool.submit(one_at_a_time, zoo_task, i, s)
+                        for i, s in enumerate(zoo)]
         for f in futures:
             f.result()
     report(ctx, zoo if not opts.no_zoo else [], random_done[0],
