@@ -232,20 +232,23 @@ static void test_chaotic(void)
     CHECK_MSG(close_rel(2 * r14.megno_mean / T, r14.mlce, 0.1), "2<Y>/t %g, mlce %g",
               2 * r14.megno_mean / T, r14.mlce);
     CHECK_MSG(r14.mlce > 0.05, "mlce %g", r14.mlce);
-    /* as close as the finite differences' below: the two orbits part (see
-     * below), the Taylor orders of the two tolerances are chosen apart
-     * (flow/rule.c), and 0.130 against 0.119 was seen */
-    CHECK_MSG(close_rel(r12.mlce, r14.mlce, 0.15), "mlce %g (1e-12), %g (1e-14)", r12.mlce,
-              r14.mlce);
-    /* over 1e4 the two follow different orbits of the chaotic sea (a 1e-14
-     * difference grows like e^(0.12 t)): the finite-time exponents agree
-     * only statistically.  Over 150 they follow the same orbit. */
+    /* Over 1e4 the orbits at the two tolerances, and the finite differences'
+     * pair, follow different orbits of the chaotic sea (a 1e-14 difference
+     * grows like e^(0.12 t)): their finite-time exponents agree only
+     * statistically, and scatter by a third (0.094 against 0.135 seen when
+     * the last bits of the Taylor coefficients changed).  Each is checked to
+     * be the sea's, the tolerances and the finite differences against each
+     * other over 150, where the orbits are the same. */
+    CHECK_MSG(r12.mlce > 0.05 && r12.mlce < 0.25, "mlce %g (1e-12)", r12.mlce);
+    CHECK_MSG(r14.mlce < 0.25, "mlce %g (1e-14)", r14.mlce);
     double fd = finite_difference_mlce(z, d0, T);
-    CHECK_MSG(close_rel(fd, r14.mlce, 0.15), "mlce %g, finite differences %g", r14.mlce, fd);
-    hl_chaos_result r150 = run(HH, z, d0, 150, 1e-14);
+    CHECK_MSG(fd > 0.05 && fd < 0.25, "mlce %g by finite differences", fd);
+    hl_chaos_result r150 = run(HH, z, d0, 150, 1e-14), r150_12 = run(HH, z, d0, 150, 1e-12);
     double fd150 = finite_difference_mlce(z, d0, 150);
     CHECK_MSG(close_rel(fd150, r150.mlce, 1e-3), "mlce %g, finite differences %g over 150",
               r150.mlce, fd150);
+    CHECK_MSG(close_rel(r150_12.mlce, r150.mlce, 1e-3), "mlce %g (1e-12), %g (1e-14) over 150",
+              r150_12.mlce, r150.mlce);
     printf("HH E = 1/6: mlce %.6g (1e-14), %.6g (1e-12), %.6g (finite differences); "
            "<Y> %.6g\n",
            r14.mlce, r12.mlce, fd, r14.megno_mean);
