@@ -220,20 +220,20 @@ static const hl_em_ops c_ops = {c_num, c_coef, c_store,          c_add,  c_sub, 
 /* ---- the program -------------------------------------------------------------- */
 
 /* z[k+1] = f[k] / (k+1) for every input, as every double back end divides
- * (hl_rule_recip_split): fma(f, hi, f lo), or f hi where 1/(k+1) is exact
- * (lo = 0), which is the same number for every finite f and one operation
- * less on the chain from one order to the next */
+ * (hl_tape_ode_source): fma(c, hi, c lo), or c hi where the reciprocal is
+ * exact (lo = 0), which is the same number for every finite c and one
+ * operation less on the chain from one order to the next */
 static void put_ode_step(cem *E, int k)
 {
-    double hi, lo;
-    hl_rule_recip_split(&hi, &lo, k + 1);
     for (int i = 0; i < E->t->nin; i++) {
-        long f = cell(E, E->t->outreg[i], k);
-        if (lo == 0)
-            hl_buf_printf(E->out, "    R[%ld] = R[%ld] * %a;\n", cell(E, i, k + 1), f, hi);
+        hl_ode_source src;
+        hl_tape_ode_source(&src, E->t, i, k);
+        long f = cell(E, src.reg, src.k);
+        if (src.lo == 0)
+            hl_buf_printf(E->out, "    R[%ld] = R[%ld] * %a;\n", cell(E, i, k + 1), f, src.hi);
         else
             hl_buf_printf(E->out, "    R[%ld] = fma(R[%ld], %a, R[%ld] * %a);\n", cell(E, i, k + 1),
-                          f, hi, f, lo);
+                          f, src.hi, f, src.lo);
     }
 }
 

@@ -361,19 +361,19 @@ static const hl_em_ops g_ops = {g_num, g_coef, g_store,          g_add,  g_sub, 
 /* ---- the program -------------------------------------------------------------- */
 
 /* z[k+1] = f[k] / (k+1) for every input, as every double back end divides
- * (hl_rule_recip_split): fma(f, hi, f lo), or f hi where 1/(k+1) is exact
- * (lo = 0), which is the same number for every finite f and one operation
- * less on the chain from one order to the next (the oscillator's recursion
- * is that chain alone) */
+ * (hl_tape_ode_source): fma(c, hi, c lo), or c hi where the reciprocal is
+ * exact (lo = 0), which is the same number for every finite c and one
+ * operation less on the chain from one order to the next (the oscillator's
+ * recursion is that chain alone) */
 static void ode_step(gem *E, int k)
 {
-    double hi, lo;
-    hl_rule_recip_split(&hi, &lo, k + 1);
     for (int i = 0; i < E->t->nin; i++) {
-        E->in = &(hl_instr){.d = i, .a = E->t->outreg[i], .b = -1, .x = -1};
-        hl_ev f = g_coef(&E->em, HL_SLOT_A, k), h = number(E, hi);
-        hl_ev v =
-            lo == 0 ? g_mul(&E->em, f, h) : g_fma(&E->em, f, h, g_mul(&E->em, f, number(E, lo)));
+        hl_ode_source src;
+        hl_tape_ode_source(&src, E->t, i, k);
+        E->in = &(hl_instr){.d = i, .a = src.reg, .b = -1, .x = -1};
+        hl_ev f = g_coef(&E->em, HL_SLOT_A, src.k), h = number(E, src.hi);
+        hl_ev v = src.lo == 0 ? g_mul(&E->em, f, h)
+                              : g_fma(&E->em, f, h, g_mul(&E->em, f, number(E, src.lo)));
         g_store(&E->em, HL_SLOT_D, k + 1, v);
         E->n = 0;
     }

@@ -622,31 +622,32 @@ static void rec_init(rec *r, const hl_tape *t)
 }
 
 /* The ODE step after coefficient k's body: z_i[k+1] = f_i[k] / (k+1) as
- * fma(f, hi, f lo), hi + lo = 1/(k+1), f * hi when lo is 0, as the compiled
- * code does (rule.h, hl_rule_recip_split): a division is slow, a product by
- * a rounded 1/(k+1) alone drifts the phase.  Behind M_ODE, so that a plain
- * run stops before it.  Output i feeds input i, which is register i; two
- * outputs at a time are one M_DIVIDE2 (a dispatch less). */
+ * fma(c, hi, c lo) from hl_tape_ode_source's c and hi + lo, c hi when lo
+ * is 0, as the compiled code does (rule.h, hl_rule_recip_split): a
+ * division is slow, a product by a rounded 1/(k+1) alone drifts the phase.
+ * Behind M_ODE, so that a plain run stops before it.  Two outputs in a row
+ * with the same hi + lo are one M_DIVIDE2 (a dispatch less). */
 static void rec_ode_step(rec *r, const hl_tape *t, int k, int S)
 {
-    double hi, lo;
-    hl_rule_recip_split(&hi, &lo, k + 1);
     r->first_op = r->nops;
     r->ntemp = 0;
     emit(r, M_ODE, 0, 0, 0, 0)->d = LOC(SP_REG, 0);
-    long lhi = rec_const(r, hi), llo = rec_const(r, lo);
-    long lpair = lo == 0 ? -1 : rec_const_pair(r, hi, lo);
     for (int i = 0; i < t->nout; i++) {
-        long f = LOC(SP_REG, (long)t->outreg[i] * S + k), d = LOC(SP_REG, (long)i * S + k + 1);
+        hl_ode_source a, b;
+        hl_tape_ode_source(&a, t, i, k);
+        long f = LOC(SP_REG, (long)a.reg * S + a.k), d = LOC(SP_REG, (long)i * S + k + 1);
         rop *o;
-        if (lo == 0) {
-            o = emit(r, M_MUL, 0, f, lhi, f);
-        } else if (i + 1 < t->nout) { /* outputs i and i + 1: z_i[k+1] and S further */
-            long f1 = LOC(SP_REG, (long)t->outreg[i + 1] * S + k);
-            o = emit(r, M_DIVIDE2, S, f, lpair, f1);
+        if (i + 1 < t->nout)
+            hl_tape_ode_source(&b, t, i + 1, k);
+        if (a.lo == 0) {
+            o = emit(r, M_MUL, 0, f, rec_const(r, a.hi), f);
+        } else if (i + 1 < t->nout && b.hi == a.hi && b.lo == a.lo) {
+            /* outputs i and i + 1: z_i[k+1] and S further */
+            long f1 = LOC(SP_REG, (long)b.reg * S + b.k);
+            o = emit(r, M_DIVIDE2, S, f, rec_const_pair(r, a.hi, a.lo), f1);
             i++;
         } else {
-            o = emit(r, M_DIVIDE, 0, f, lhi, llo);
+            o = emit(r, M_DIVIDE, 0, f, rec_const(r, a.hi), rec_const(r, a.lo));
         }
         o->d = d;
     }

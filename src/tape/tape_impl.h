@@ -57,6 +57,20 @@ struct hl_tape {
     struct hl_arb_em *aem; /* the Arb emitter of the body (arb_em_impl.h) */
 };
 
+/* The ODE step of every double back end (prog.c, jit_taylor.c, emit_c.c),
+ * z_i[k+1] = f_i[k] / (k+1): input i's coefficient k+1 is the coefficient
+ * k of register reg times hi + lo, as fma(c, hi, c lo), or c hi where lo
+ * is 0 (hl_rule_recip_split: the quotient rounded once).  Where input i's
+ * derivative is another input j whose derivative is computed (q' = p, a
+ * mechanical system's coordinate), z_i[k+1] = z_j[k] / (k+1) is taken as
+ * f_j[k-1] / (k (k+1)): one rounding where there were two, and the chain
+ * from one order to the next (q, f, p, q) one division shorter (taylor.c). */
+typedef struct hl_ode_source {
+    int reg, k;
+    double hi, lo;
+} hl_ode_source;
+void hl_tape_ode_source(hl_ode_source *src, const hl_tape *t, int i, int k);
+
 /* newton.c: hl_newton */
 typedef int (*hl_newton_jit_fn)(const double *x, double *U, int *iters, double *last,
                                 double *Z);

@@ -6,7 +6,8 @@
  * one or two instructions is built from a formula; the reference runs the
  * rules over the tape's own instruction list, and each back end of the table
  * below must give the same bits (memcmp) in Taylor mode, in the ODE
- * recursion (z[k+1] = f[k] / (k+1) as hl_rule_recip_split says) and at a
+ * recursion (z[k+1] = f[k] / (k+1) as hl_tape_ode_source says: here b' = a,
+ * whose chained form is taken) and at a
  * point.  A compiled back end joins by adding a row to `backends`; the
  * compiled ones (gccjit, C text) run the ODE recursion and point values.
  *
@@ -21,6 +22,7 @@
 #include "hl_test.h"
 #include "hamlie/tape.h"
 #include "rules/test/rules_ref.h"
+#include "tape/test/ode_ref.h"
 #include "tape/prog_impl.h"
 #include "tape/tape_impl.h"
 
@@ -78,12 +80,7 @@ static void ref_tape_ode(double *z, const hl_tape *t)
         r[(size_t)i * S] = z[(size_t)i * S];
     for (int k = 0; k < ORDER; k++) {
         ref_step(t, r, keeps, k);
-        double hi, lo;
-        hl_rule_recip_split(&hi, &lo, k + 1);
-        for (int i = 0; i < t->nin; i++) {
-            double f = r[(size_t)t->outreg[i] * S + k];
-            r[(size_t)i * S + k + 1] = lo == 0 ? f * hi : fma(f, hi, f * lo);
-        }
+        ref_ode_step(r, t, k, S);
     }
     memcpy(z, r, (size_t)t->nin * S * sizeof *z);
     free(r);

@@ -13,6 +13,7 @@
 #include "hamlie/expr.h"
 #include "hamlie/tape.h"
 #include "rules/test/rules_ref.h"
+#include "tape/test/ode_ref.h"
 #include "tape/tape_impl.h"
 
 /* every operation the tape compiler makes, with A = z_i and B = z_{i+1} */
@@ -76,12 +77,7 @@ static void reference_ode(const hl_tape *t, double *z, int order)
     for (int k = 0; k < order; k++) {
         for (int i = 0; i < t->ncode; i++)
             hl_rule_of(t->code[i].op)->taylor(&em[i].em, k);
-        double hi, lo;
-        hl_rule_recip_split(&hi, &lo, k + 1);
-        for (int i = 0; i < t->nin; i++) {
-            double f = R[t->outreg[i] * S + k];
-            R[i * S + k + 1] = fma(f, hi, f * lo);
-        }
+        ref_ode_step(R, t, k, S);
     }
     memcpy(z, R, (size_t)t->nin * S * sizeof *z);
     free(R);
