@@ -51,12 +51,13 @@ void hl_tape_taylor_d(double *out, const double *in, int order, hl_tape *t)
 }
 
 /* NOTE: the two divisions in a row, z_j[k] = f_j[k-1] / k and then z_i[k+1]
- * = z_j[k] / (k+1), were a tenth of the recursion's latency on the pendulum,
- * Henon-Heiles and Kepler (each order waits for the last), the
- * oscillator's eighth; the steps ran 4-13 % faster with one (bench/
- * work_precision_ab.sh).  A product by a rounded 1/(k+1) alone is faster
- * still, but its bias is the same every step and drifts the phase (the
- * oscillator's error at tol 1e-16 went from 1e-14 to 7e-13 over t = 1e5). */
+ * = z_j[k] / (k+1), were some 7 cycles each of the 29 from one coefficient
+ * of q to the next but one on Henon-Heiles (each order waits for the last);
+ * with one, the steps ran 1-14 % faster (the oscillator most, Kepler least;
+ * docs/work-precision.md, session 13).  A product by a rounded 1/(k+1)
+ * alone is faster still, but its error is the same every step and drifts
+ * the phase (the oscillator's error at tol 1e-16 went from 1e-14 to 7e-13
+ * over t = 1e5). */
 void hl_tape_ode_source(hl_ode_source *src, const hl_tape *t, int i, int k)
 {
     int j = t->outreg[i], n = k + 1;
