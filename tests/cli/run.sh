@@ -83,6 +83,19 @@ assert head == ["t", "x", "p", "H"] and len(rows) == 201
 assert max(max(abs(x - math.cos(t)), abs(p + math.sin(t))) for t, x, p, H in rows) < 1e-12'
 run 0 run -H "$OSC" --scheme lie --tol 1e-15 --t 100 --init x=1,p=0
 py "$tmp/out" 'assert len(rows) == 1001'
+# below |z| = 1 --tol is absolute (as heyoka's): a state of 1e-100 is said to
+# be integrated to 1e-15, not to 1e-15 of its size (at t = 1000 it ended
+# 1.4e83 times its amplitude away); a state of size 1, 0.01 or 0 is not
+run 0 run -H "$OSC" --scheme lie --t 10 --init x=0,p=-1e-100 --json
+err_has "note: |z| = 1e-100 at t = 0, and below 1 --tol 1e-15 is an absolute tolerance"
+run 0 run -H "$OSC" --scheme rk4 --dt 0.1 --t 1 --init x=1e-9,p=0 --json
+err_has "the reference (sigma) may have few correct digits"
+for init in x=1,p=0 x=0.01,p=0 x=0,p=0; do
+    run 0 run -H "$OSC" --scheme lie --t 1 --init "$init" --json
+    if grep -q "note:" "$tmp/err"; then bad "a note on --tol at $init: $(cat "$tmp/err")"; else ok; fi
+done
+run 0 run -H "$OSC" --scheme rk4 --dt 0.1 --t 1 --init x=1e-9,p=0 --no-reference --json
+if grep -q "note:" "$tmp/err"; then bad "a note on --tol without a reference"; else ok; fi
 # --scheme lie with --dt alone: the truncated Lie series (order 4)
 run 0 run -H "$PEND" --scheme lie --dt 0.1 --t 2 --init q=1.3,p=0 --orders 0.1,0.05,0.025 --json
 py "$tmp/out" 'assert all(abs(o["order"] - 4) < 0.15 for o in d["orders"][1:]), d["orders"]'
